@@ -1,0 +1,119 @@
+#include "apps/cli.h"
+
+#include <fstream>
+#include <toml++/toml.h>
+
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs::app {
+namespace {
+
+std::string scalar(const toml::node& n, const std::string& key) {
+  if (auto s = n.value<std::string>()) return *s;
+  if (n.is_boolean()) return *n.value<bool>() ? "true" : "false";
+  if (n.is_integer()) return std::to_string(*n.value<std::int64_t>());
+  if (n.is_floating_point()) return format_double(*n.value<double>());
+  throw UserError("config file: key '" + key + "' has a value that is not a number, string or bool");
+}
+
+// CLI11 2.1 reads config files for the top-level app only, and its TOML reader accepts almost
+// anything; toml++ gives real syntax errors with a line number. Values from the file go into
+// options the command line left unset, so flags win.
+void apply_config_file(CLI::App& sub, const std::string& file) {
+  toml::table root;
+  try {
+    root = toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    throw UserError("--config " + file + ": malformed TOML at line " +
+                    std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  for (auto&& [k, node] : root) {
+    const std::string key(k.str());
+    CLI::Option* opt = sub.get_option_no_throw("--" + key);
+    if (opt == nullptr || key == "config")
+      throw UserError("--config " + file + ": unknown key '" + key + "'");
+    if (opt->count() > 0) continue;  // given on the command line
+    if (auto* arr = node.as_array()) {
+      for (auto&& el : *arr) opt->add_result(scalar(el, key));
+    } else {
+      opt->add_result(scalar(node, key));
+    }
+    try {
+      opt->run_callback();
+    } catch (const CLI::Error& e) {
+      throw UserError("--config " + file + ": key '" + key + "': " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+void add_config_option(CLI::App& sub) {
+  auto file = std::make_shared<std::string>();
+  sub.add_option("--config", *file, "TOML file of flag = value lines; command-line flags win")
+      ->check(CLI::ExistingFile);
+  sub.parse_complete_callback([&sub, file] {
+    if (!file->empty()) apply_config_file(sub, *file);
+  });
+}
+
+void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
+  sub.add_option("--dim", c.dim, "Dimension d (1, 2 or 3)")->capture_default_str();
+  sub.add_option("--particles", c.particles, "Number of particles N")->capture_default_str();
+  sub.add_option("--density", c.density, "Number density n (diameter 1)")->capture_default_str();
+  sub.add_option("--restitution", c.restitution, "Coefficient of restitution r in [0, 1]")
+      ->capture_default_str();
+  sub.add_option("--cutoff", c.cutoff,
+                 "delta: collisions with normal relative speed below it are elastic")
+      ->capture_default_str();
+  sub.add_option("--speed", c.speed, "Speed v0 of the kicked particle")->capture_default_str();
+  sub.add_option("--seed", c.seed, "Master random seed")->capture_default_str();
+  sub.add_option("--realisation", c.realisation, "Realisation index (selects random streams)")
+      ->capture_default_str();
+  sub.add_option("--t-max", c.t_max, "Final time in units of diameter / v0")
+      ->capture_default_str();
+  sub.add_option("--initial", c.initial, "kick: one particle moves; thermal: Maxwell gas")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Initial>{{"kick", Initial::Kick}, {"thermal", Initial::Thermal}}))
+      ->default_str("kick");
+  sub.add_option("--kick-site", c.kick_site, "Which particle is kicked: random or centre")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, KickSite>{
+          {"random", KickSite::Random}, {"centre", KickSite::Centre}}))
+      ->default_str("random");
+  sub.add_option("--temperature", c.temperature, "Temperature of the thermal initial state")
+      ->capture_default_str();
+  sub.add_option("--lattice", c.lattice, "1D only: lattice spacing a instead of random positions")
+      ->capture_default_str();
+}
+
+std::filesystem::path prepare_output_dir(const std::string& dir, bool force) {
+  namespace fs = std::filesystem;
+  const fs::path p(dir);
+  std::error_code ec;
+  if (fs::exists(p, ec)) {
+    if (!fs::is_directory(p, ec))
+      throw UserError("--out " + dir + ": exists and is not a folder");
+    if (!fs::is_empty(p, ec) && !force)
+      throw UserError("--out " + dir + ": folder exists and is not empty (use --force to write into it)");
+  } else {
+    fs::create_directories(p, ec);
+    if (ec) throw UserError("--out " + dir + ": cannot create folder: " + ec.message());
+  }
+  return p;
+}
+
+void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+  auto tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw UserError(path.string() + ": cannot write");
+    f << text;
+    f.flush();
+    if (!f) throw UserError(path.string() + ": write failed");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace gs::app

@@ -1,0 +1,26 @@
+#pragma once
+// Pieces shared by the subcommands: the TOML config file, the physics flags of the design's
+// contract, and the output folder that never overwrites earlier results by accident.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+
+#include "sim/config.h"
+
+namespace gs::app {
+
+// Adds --config FILE (TOML, keys = long flag names; flags given on the command line win).
+void add_config_option(CLI::App& sub);
+
+// The physics flags shared by run, ensemble and movie.
+void add_physics_options(CLI::App& sub, PhysicsConfig& c);
+
+// Creates `dir` for a new run. An existing non-empty folder is refused unless `force`;
+// nothing in it is deleted either way (files are replaced one by one as they are written).
+std::filesystem::path prepare_output_dir(const std::string& dir, bool force);
+
+// Writes `text` to `path` through a temporary file and rename, so a reader never sees half a
+// file and an interrupted write leaves the previous version intact.
+void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace gs::app

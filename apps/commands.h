@@ -1,0 +1,9 @@
+#pragma once
+// Each subcommand registers itself on the top-level app; main.cpp only lists them.
+#include <CLI/CLI.hpp>
+
+namespace gs::app {
+
+void add_run_command(CLI::App& app);
+
+}  // namespace gs::app

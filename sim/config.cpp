@@ -1,0 +1,86 @@
+#include "sim/config.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs {
+
+double PhysicsConfig::box() const {
+  const double n = lattice > 0 ? 1.0 / lattice : density;
+  return std::pow(static_cast<double>(particles) / n, 1.0 / dim);
+}
+
+double PhysicsConfig::paper_time(double t) const {
+  const double n = lattice > 0 ? 1.0 / lattice : density;
+  return t * speed * std::pow(n, 1.0 / dim);
+}
+
+double max_rsa_density(int dim) {
+  // A little under the jamming densities (1D: Renyi 0.7476; 2D: 0.547 * 4/pi = 0.697;
+  // 3D: 0.384 * 6/pi = 0.733), where the last particles still find room quickly.
+  switch (dim) {
+    case 1: return 0.74;
+    case 2: return 0.69;
+    default: return 0.73;
+  }
+}
+
+static std::string num(double x) { return format_double(x); }
+
+void validate(const PhysicsConfig& c) {
+  auto fail = [](const std::string& m) { throw UserError(m); };
+  if (c.dim < 1 || c.dim > 3) fail("--dim " + std::to_string(c.dim) + ": must be 1, 2 or 3");
+  if (c.particles < 2)
+    fail("--particles " + std::to_string(c.particles) + ": need at least 2 particles");
+  if (c.lattice != 0.0) {
+    if (c.dim != 1) fail("--lattice: a lattice start exists only in 1D (--dim 1)");
+    if (!(c.lattice > 1.0))
+      fail("--lattice " + num(c.lattice) + ": spacing must exceed the diameter 1");
+  } else {
+    if (!(c.density > 0)) fail("--density " + num(c.density) + ": must be positive");
+    if (c.density > max_rsa_density(c.dim))
+      fail("--density " + num(c.density) + ": above " + num(max_rsa_density(c.dim)) +
+           ", the most random sequential addition reaches in " + std::to_string(c.dim) + "D");
+  }
+  if (!(c.restitution >= 0 && c.restitution <= 1))
+    fail("--restitution " + num(c.restitution) + ": must lie in [0, 1]");
+  if (!(c.cutoff >= 0)) fail("--cutoff " + num(c.cutoff) + ": must be >= 0");
+  if (!(c.speed > 0) || !std::isfinite(c.speed))
+    fail("--speed " + num(c.speed) + ": must be positive");
+  if (!(c.t_max > 0) || !std::isfinite(c.t_max))
+    fail("--t-max " + num(c.t_max) + ": must be positive");
+  if (c.initial == Initial::Thermal && !(c.temperature > 0 && std::isfinite(c.temperature)))
+    fail("--temperature " + num(c.temperature) + ": must be positive");
+  // Below three diameters a particle could meet its own periodic image within the cell stencil.
+  if (c.box() < 3.0)
+    fail("--particles " + std::to_string(c.particles) + ": box side " + num(c.box()) +
+         " is under 3 diameters; use more particles");
+}
+
+const char* to_string(Initial i) { return i == Initial::Kick ? "kick" : "thermal"; }
+const char* to_string(KickSite k) { return k == KickSite::Random ? "random" : "centre"; }
+
+std::string to_toml(const PhysicsConfig& c) {
+  std::ostringstream o;
+  o << "# grainshock run configuration; rerun with: grainshock run --config run.toml\n";
+  o << "dim = " << c.dim << "\n";
+  o << "particles = " << c.particles << "\n";
+  o << "density = " << num(c.density) << "\n";
+  o << "restitution = " << num(c.restitution) << "\n";
+  o << "cutoff = " << num(c.cutoff) << "\n";
+  o << "speed = " << num(c.speed) << "\n";
+  o << "seed = " << c.seed << "\n";
+  o << "realisation = " << c.realisation << "\n";
+  o << "t-max = " << num(c.t_max) << "\n";
+  o << "initial = \"" << to_string(c.initial) << "\"\n";
+  o << "kick-site = \"" << to_string(c.kick_site) << "\"\n";
+  o << "temperature = " << num(c.temperature) << "\n";
+  o << "lattice = " << num(c.lattice) << "\n";
+  return o.str();
+}
+
+}  // namespace gs

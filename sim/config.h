@@ -1,0 +1,48 @@
+#pragma once
+// The physics of one run: a plain struct with the paper's values as defaults. The command line
+// and TOML files fill it; validate() is the single place that rejects impossible input.
+#include <cstdint>
+#include <string>
+
+namespace gs {
+
+enum class Initial { Kick, Thermal };
+enum class KickSite { Random, Centre };
+
+struct PhysicsConfig {
+  int dim = 2;
+  std::int64_t particles = 20000;
+  double density = 0.25;      // number density n (diameter 1)
+  double restitution = 0.1;   // r; the paper's Fig. 1(a)
+  double cutoff = 1e-4;       // delta: collisions slower than this are elastic
+  double speed = 1.0;         // v0 of the kicked particle
+  std::uint64_t seed = 1;
+  std::uint64_t realisation = 0;  // index within an ensemble; streams are keyed by it
+  double t_max = 2000.0;
+  Initial initial = Initial::Kick;
+  KickSite kick_site = KickSite::Random;
+  double temperature = 1.0;   // thermal initial state only
+  double lattice = 0.0;       // 1D lattice spacing a; 0 means random positions
+
+  // Side of the periodic cubic box, L = (N/n)^(1/d).
+  double box() const;
+  // Converts simulation time (diameter / v0) to the paper's unit 1/(v0 n^(1/d)).
+  double paper_time(double t) const;
+  // Sticky coalescence: the exact 1D r = 0 limit of the paper.
+  bool sticky() const { return dim == 1 && restitution == 0.0; }
+};
+
+// Throws UserError naming the offending input (flag name) if the configuration is impossible.
+void validate(const PhysicsConfig& c);
+
+// Highest number density random sequential addition reaches in reasonable time (below the RSA
+// jamming limits: packing 0.547 in 2D, Feder 1980; 0.384 in 3D, Talbot et al. 1991).
+double max_rsa_density(int dim);
+
+// TOML text with one key per command-line flag, readable back with --config.
+std::string to_toml(const PhysicsConfig& c);
+
+const char* to_string(Initial i);
+const char* to_string(KickSite k);
+
+}  // namespace gs

@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/config.h"
+#include "sim/error.h"
+
+namespace gs {
+namespace {
+
+TEST(Config, BoxSideFollowsDensity) {
+  PhysicsConfig c;
+  c.dim = 2;
+  c.particles = 250000;
+  c.density = 0.25;
+  EXPECT_NEAR(c.box(), 1000.0, 1e-9);  // the paper's 2D box: (2.5e5 / 0.25)^(1/2)
+  c.dim = 3;
+  c.particles = 2000000;
+  EXPECT_NEAR(c.box(), 200.0, 1e-9);   // the paper's 3D box
+  EXPECT_NEAR(c.paper_time(10.0), 10.0 * std::cbrt(0.25), 1e-12);
+}
+
+TEST(Config, RejectsImpossibleInputNamingTheFlag) {
+  auto message = [](auto mutate) {
+    PhysicsConfig c;
+    mutate(c);
+    try {
+      validate(c);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message([](PhysicsConfig& c) { c.dim = 4; }).find("--dim"), std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.particles = 1; }).find("--particles"),
+            std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.density = 0; }).find("--density"), std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.density = 0.8; }).find("--density"),
+            std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.restitution = 1.5; }).find("--restitution"),
+            std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.restitution = -0.1; }).find("--restitution"),
+            std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.cutoff = -1; }).find("--cutoff"), std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.t_max = 0; }).find("--t-max"), std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) { c.lattice = 2; }).find("--lattice"), std::string::npos);
+  EXPECT_EQ(message([](PhysicsConfig&) {}), "accepted");
+  EXPECT_EQ(message([](PhysicsConfig& c) { c.restitution = 1.0; }), "accepted");
+  EXPECT_EQ(message([](PhysicsConfig& c) { c.restitution = 0.0; }), "accepted");
+}
+
+}  // namespace
+}  // namespace gs
