@@ -1,0 +1,244 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sim/error.h"
+#include "sim/observables.h"
+#include "sim/rng.h"
+
+namespace gs {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+Snapshot make_snapshot(int dim, double box = 0) {
+  Snapshot s;
+  s.info.dim = dim;
+  s.info.box = box;
+  return s;
+}
+
+void add(Snapshot& s, Eigen::Vector3d x, Eigen::Vector3d v = Eigen::Vector3d::Zero(),
+         bool active = true) {
+  s.position.push_back(x);
+  s.velocity.push_back(v);
+  s.radius.push_back(0.5);
+  s.active.push_back(active ? 1 : 0);
+}
+
+TEST(Observables, GyrationEigenvaluesOfRotatedEllipse) {
+  // Evenly spaced angles on x = a cos, y = b sin: the mean of cos^2 over them is exactly 1/2, so
+  // the gyration eigenvalues are a^2/2 and b^2/2 whatever the rotation.
+  const double a = 7, b = 3, rot = 0.6;
+  Snapshot s = make_snapshot(2);
+  const Eigen::Vector3d offset(100, -40, 0);
+  for (int i = 0; i < 360; ++i) {
+    const double th = 2 * pi * i / 360;
+    const double x = a * std::cos(th), y = b * std::sin(th);
+    add(s, offset + Eigen::Vector3d(x * std::cos(rot) - y * std::sin(rot),
+                                    x * std::sin(rot) + y * std::cos(rot), 0));
+  }
+  add(s, Eigen::Vector3d(1e6, 1e6, 0), Eigen::Vector3d::Zero(), false);  // passive: ignored
+  const Shape sh = measure_shape(s);
+  // Tolerances: round-off of sums of 360 terms of size ~50, relative 1e-12 is ~1e4 ulps of room.
+  EXPECT_EQ(sh.active, 360u);
+  EXPECT_NEAR(sh.centre.x(), 100, 1e-10);
+  EXPECT_NEAR(sh.centre.y(), -40, 1e-10);
+  EXPECT_NEAR(sh.eigenvalues[0], a * a / 2, 1e-10);
+  EXPECT_NEAR(sh.eigenvalues[1], b * b / 2, 1e-10);
+  EXPECT_NEAR(sh.radius_rms, std::sqrt((a * a + b * b) / 2), 1e-10);
+  const double q = (a * a - b * b) / (a * a + b * b);
+  EXPECT_NEAR(sh.anisotropy, q * q, 1e-12);
+}
+
+TEST(Observables, AnisotropyZeroForRingAndShell) {
+  Snapshot ring = make_snapshot(2);
+  for (int i = 0; i < 12; ++i)
+    add(ring, Eigen::Vector3d(5 * std::cos(2 * pi * i / 12), 5 * std::sin(2 * pi * i / 12), 0));
+  // Tolerance: an exactly isotropic set; only round-off (~1e-16 relative) separates l1 and l2.
+  EXPECT_NEAR(measure_shape(ring).anisotropy, 0, 1e-14);
+
+  // The 8 cube vertices plus the 6 octahedron vertices: gyration tensor proportional to identity.
+  Snapshot shell = make_snapshot(3);
+  for (int i = 0; i < 8; ++i)
+    add(shell, Eigen::Vector3d(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1) / std::sqrt(3.0));
+  for (int k = 0; k < 3; ++k)
+    for (int sgn : {-1, 1}) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      x[k] = sgn;
+      add(shell, x);
+    }
+  const Shape sh = measure_shape(shell);
+  EXPECT_NEAR(sh.anisotropy, 0, 1e-14);
+  EXPECT_NEAR(sh.eigenvalues[0], 1.0 / 3.0, 1e-14);
+  EXPECT_NEAR(sh.eigenvalues[2], 1.0 / 3.0, 1e-14);
+}
+
+TEST(Observables, AnisotropyNearOneForThinLine) {
+  for (int dim : {2, 3}) {
+    Snapshot s = make_snapshot(dim);
+    for (int i = 0; i < 101; ++i) {
+      const double w = 0.01 * (i % 2 ? 1 : -1);
+      add(s, Eigen::Vector3d(i, w, dim == 3 ? w * (i % 3 ? 1 : -1) : 0));
+    }
+    const Shape sh = measure_shape(s);
+    // Transverse variance 1e-4 against 850 along the line: A = 1 - O(1e-6) < 1, so 0.999 is far
+    // below the value and 1 is still excluded.
+    EXPECT_GT(sh.anisotropy, 0.999) << dim;
+    EXPECT_LT(sh.anisotropy, 1.0) << dim;
+  }
+}
+
+TEST(Observables, AnisotropyStaysInUnitInterval) {
+  Rng rng(7, 0, Stream::Positions);
+  for (int dim : {2, 3})
+    for (int trial = 0; trial < 50; ++trial) {
+      Snapshot s = make_snapshot(dim);
+      const Eigen::Vector3d scale(1 + 5 * rng.uniform(), 1 + 5 * rng.uniform(), rng.uniform());
+      for (int i = 0; i < 200; ++i) {
+        Eigen::Vector3d x(rng.normal(), rng.normal(), dim == 3 ? rng.normal() : 0);
+        add(s, x.cwiseProduct(scale));
+      }
+      const double A = measure_shape(s).anisotropy;
+      EXPECT_GE(A, 0.0);
+      EXPECT_LT(A, 1.0);
+    }
+  // The 3D index of a disc-like set (l1 = l2, l3 = 0) is 1/4 by its definition.
+  EXPECT_NEAR(anisotropy_index(3, Eigen::Vector3d(1, 1, 0)), 0.25, 1e-15);
+  EXPECT_NEAR(anisotropy_index(3, Eigen::Vector3d(1, 0, 0)), 1.0, 1e-15);
+}
+
+Snapshot random_gas(int dim, int n, std::uint64_t seed) {
+  Rng rng(seed, 0, Stream::Positions);
+  Snapshot s = make_snapshot(dim);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d x(rng.normal(), rng.normal(), dim == 3 ? rng.normal() : 0);
+    Eigen::Vector3d v(rng.normal(), rng.normal(), dim == 3 ? rng.normal() : 0);
+    add(s, 30 * x, v, i % 3 != 0);
+  }
+  return s;
+}
+
+TEST(Observables, DistributionsAreNormalised) {
+  for (int dim : {2, 3}) {
+    const Snapshot s = random_gas(dim, 3000, 11 + dim);
+    // Tolerance 1e-12: a sum of 50 products of order 1 carries ~1e-15 round-off.
+    const Histogram pr = radial_distribution(s, {.bins = 50});
+    EXPECT_EQ(pr.samples, 2000u);
+    EXPECT_EQ(pr.outside, 0u);
+    EXPECT_NEAR(pr.integral(), 1.0, 1e-12);
+    const Histogram pv = speed_distribution(s, {.bins = 37});
+    EXPECT_NEAR(pv.integral(), 1.0, 1e-12);
+    // Scaled forms keep the normalisation (Eqs. 9, 10 of the paper).
+    EXPECT_NEAR(scaled_radial_distribution(pr, 5000, 1.0 / 3).integral(), 1.0, 1e-12);
+    EXPECT_NEAR(scaled_speed_distribution(pv, 5000, 1.0 / 3).integral(), 1.0, 1e-12);
+    EXPECT_NEAR(scaled_radial_distribution(pr, 5000, 1.0 / 3).edges.back(),
+                pr.edges.back() * std::pow(5000, -1.0 / 3), 1e-12);
+  }
+  // With a fixed range the integral is the fraction inside it.
+  const std::vector<double> x = {0.5, 1.5, 2.5, 9.0};
+  const Histogram h = make_histogram(x, {.bins = 3, .lo = 0, .hi = 3});
+  EXPECT_EQ(h.outside, 1u);
+  EXPECT_NEAR(h.integral(), 0.75, 1e-15);
+  EXPECT_THROW(make_histogram(x, {.bins = 0}), UserError);
+  EXPECT_THROW(scaled_radial_distribution(h, 0.0, 0.5), UserError);
+}
+
+TEST(Observables, BandPackingOfSquareLattice) {
+  // Square lattice of spacing a = 1.25 in a periodic box of side 100: 64 discs per 10 x 10 cell,
+  // packing 64 * pi/4 / 100 exactly, in every cell.
+  const double a = 1.25, box = 100;
+  Snapshot s = make_snapshot(2, box);
+  for (int i = 0; i < 80; ++i)
+    for (int j = 0; j < 80; ++j) {
+      // The band lives at x < 50; unwrapped images (x - box) must land in the same cells.
+      const double x = (i + 0.5) * a, y = (j + 0.5) * a;
+      const bool band = x < 50;
+      add(s, Eigen::Vector3d(band && j % 2 ? x - box : x, y, 0), Eigen::Vector3d::Zero(), band);
+    }
+  const BandPacking p = band_packing(s);
+  const double expected = 64 * pi / 4 / 100;
+  EXPECT_DOUBLE_EQ(p.cell_side, 10.0);
+  EXPECT_EQ(p.fraction.size(), 50u);  // 5 columns of cells hold the band, 10 rows
+  // Tolerance: identical cells, so only the round-off of 64 additions (~1e-14).
+  EXPECT_NEAR(p.typical, expected, 1e-12);
+  EXPECT_NEAR(p.mean, expected, 1e-12);
+  EXPECT_NEAR(p.mode, expected, 0.5 / 50);  // the centre of the bin of width 1/50 holding it
+  EXPECT_NEAR(p.distribution.integral(), 1.0, 1e-12);
+}
+
+TEST(Observables, BandPackingOfHexagonalLattice) {
+  // Triangular lattice of spacing a: packing pi / (2 sqrt 3 a^2); a = 1.1 gives 0.7495.
+  const double a = 1.1;
+  Snapshot s = make_snapshot(2);  // no box: unbounded cells of side 10
+  const double h = a * std::sqrt(3.0) / 2;
+  for (int j = 0; h * (j + 0.5) < 200; ++j)
+    for (int i = 0;; ++i) {
+      const double x = a * (i + 0.25 + 0.5 * (j % 2));
+      if (x >= 200) break;
+      add(s, Eigen::Vector3d(x, h * (j + 0.5), 0));
+    }
+  const BandPacking p = band_packing(s);
+  const double expected = pi / (2 * std::sqrt(3.0) * a * a);
+  // Tolerance 1%: a 10 x 10 cell cuts rows and columns of the lattice, so its count varies by
+  // about one row (~9 of ~95 discs) from cell to cell, but these offsets average out over the 400
+  // cells to about a row over the whole 200 x 200 region, i.e. a / 200 ~ 0.6%.
+  EXPECT_NEAR(p.typical / expected, 1.0, 0.01);
+  EXPECT_NEAR(p.mean / expected, 1.0, 0.01);
+  EXPECT_EQ(p.fraction.size(), 400u);
+}
+
+TEST(Observables, BandPackingOfSimpleCubicLattice) {
+  // Spacing 2 in a box of side 40: 125 spheres of volume pi/6 per 10^3 cell.
+  Snapshot s = make_snapshot(3, 40);
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k)
+        add(s, Eigen::Vector3d(2 * i + 1, 2 * j + 1, 2 * k + 1), Eigen::Vector3d::Zero(), i < 5);
+  const BandPacking p = band_packing(s);
+  EXPECT_EQ(p.fraction.size(), 16u);
+  EXPECT_NEAR(p.typical, 125 * pi / 6 / 1000, 1e-12);  // identical cells: round-off only
+}
+
+TEST(Observables, RadialProfileAndFastInnerEdge) {
+  // Two rings around the origin: the inner one (R = 10) moving outward at 2, the outer one
+  // (R = 20) at 1. The centre of mass is the origin and its velocity zero by symmetry.
+  Snapshot s = make_snapshot(2);
+  for (double R : {10.0, 20.0})
+    for (int i = 0; i < 64; ++i) {
+      const Eigen::Vector3d u(std::cos(2 * pi * i / 64), std::sin(2 * pi * i / 64), 0);
+      add(s, R * u, (R == 10 ? 2.0 : 1.0) * u);
+    }
+  const RadialProfile p = radial_profile(s, {.bins = 4, .lo = 0, .hi = 24});
+  ASSERT_EQ(p.count.size(), 4u);
+  EXPECT_EQ(p.count[1], 64u);  // [6, 12)
+  EXPECT_EQ(p.count[3], 64u);  // [18, 24]
+  EXPECT_EQ(p.count[0] + p.count[2], 0u);
+  // Tolerances: exact symmetric sets, round-off only.
+  EXPECT_NEAR(p.density[1], 64 / (pi * (144 - 36)), 1e-12);
+  EXPECT_NEAR(p.mean_speed[1], 2, 1e-12);
+  EXPECT_NEAR(p.mean_radial_velocity[1], 2, 1e-12);
+  EXPECT_NEAR(p.mean_radial_velocity[3], 1, 1e-12);
+  EXPECT_TRUE(std::isnan(p.mean_speed[0]));
+  const InnerEdge e = inner_edge_speed(s);
+  EXPECT_NEAR(e.correlation, -1, 1e-12);  // speed is a decreasing function of R here
+  EXPECT_NEAR(e.ratio, 2, 1e-12);
+  // Reversed: faster outside gives the opposite signs.
+  for (auto& v : s.velocity) v *= v.norm() > 1.5 ? 0.25 : 1.0;
+  const InnerEdge f = inner_edge_speed(s);
+  EXPECT_NEAR(f.correlation, 1, 1e-12);
+  EXPECT_NEAR(f.ratio, 0.5, 1e-12);
+}
+
+TEST(Observables, RejectsBadSnapshots) {
+  Snapshot s = make_snapshot(4);
+  add(s, Eigen::Vector3d::Zero());
+  EXPECT_THROW(measure_shape(s), UserError);
+  Snapshot t = make_snapshot(2);
+  t.position.push_back(Eigen::Vector3d::Zero());
+  EXPECT_THROW(speed_distribution(t), UserError);  // no velocities in the file
+}
+
+}  // namespace
+}  // namespace gs
