@@ -17,3 +17,15 @@ inline std::string format_double(double x) {
 }
 
 }  // namespace gs
+
+namespace gs {
+
+// Shortest round-trip text without the float marker: 12 for 12.0, for CSV columns.
+inline std::string format_number(double x) {
+  if (!std::isfinite(x)) return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, end);
+}
+
+}  // namespace gs

@@ -1,0 +1,142 @@
+#pragma once
+// Event-driven molecular dynamics of unit hard spheres in a periodic box (Rapaport, "The Art of
+// Molecular Dynamics Simulation", ch. 14; Smallenburg, arXiv:2201.01458 for the one-event-per-
+// particle bookkeeping).
+//
+// Each moving particle owns exactly one slot in the event queue: the earlier of its predicted
+// collision and its next cell crossing. A collision prediction remembers the partner's collision
+// counter; if the partner has changed velocity since, the event is stale and the particle simply
+// predicts again. Positions are updated lazily (each particle keeps the time its position refers
+// to). A particle that has never moved is in no list but its cell's and costs nothing, so a kick
+// run costs what its active particles cost, not what N costs.
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "sim/cell_grid.h"
+#include "sim/config.h"
+#include "sim/event_queue.h"
+#include "sim/initial.h"
+#include "sim/snapshot.h"
+#include "sim/vec.h"
+
+namespace gs {
+
+// Observables of the moving particles at one instant, with the definitions of DESIGN.md.
+struct Sample {
+  double t = 0;
+  std::int64_t active = 0;   // particles that have collided at least once
+  double energy = 0;         // total kinetic energy (unit masses)
+  double radius_rms = 0;     // rms distance of active particles from their centre of mass
+  double speed_rms = 0;      // rms speed of active particles
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  std::int64_t collisions = 0;
+  std::int64_t events = 0;
+};
+
+struct EngineStats {
+  std::int64_t events = 0;      // everything popped from the queue
+  std::int64_t collisions = 0;  // velocity-changing collisions
+  std::int64_t inelastic = 0;   // of which dissipated energy (normal speed above the cutoff)
+  std::int64_t crossings = 0;   // cell crossings
+  std::int64_t stale = 0;       // predictions invalidated by a partner's collision
+  std::int64_t overlaps = 0;    // collisions of a pair found deeper than 1e-9 inside contact
+  double max_overlap = 0;       // deepest of those
+  double virial = 0;            // sum of impulse x contact distance, for the pressure
+};
+
+enum class EventKind { None, Collision, Crossing, Stale };
+
+// The dimension-erased face of an engine, for the command line and other drivers. Virtual calls
+// stop here: run_until() runs the hot loop of the concrete Engine<D>.
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+  virtual int dim() const = 0;
+  virtual const PhysicsConfig& config() const = 0;
+  // Processes every event up to time t and leaves the clock at t.
+  virtual void run_until(double t) = 0;
+  // Processes the next event only (for tests and debugging).
+  virtual EventKind step() = 0;
+  virtual double time() const = 0;
+  virtual Sample sample() const = 0;
+  virtual Snapshot snapshot() const = 0;
+  virtual const EngineStats& stats() const = 0;
+  // Deepest overlap (1 - distance) of any pair now, by a scan of all cells; 0 if none.
+  virtual double max_overlap_now() const = 0;
+};
+
+std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c);
+
+template <int D>
+class Engine final : public Simulation {
+ public:
+  Engine(const PhysicsConfig& c, InitialState<D> init);
+
+  int dim() const override { return D; }
+  const PhysicsConfig& config() const override { return config_; }
+  void run_until(double t) override;
+  EventKind step() override;
+  double time() const override { return now_; }
+  Sample sample() const override;
+  Snapshot snapshot() const override;
+  const EngineStats& stats() const override { return stats_; }
+  double max_overlap_now() const override;
+
+  // Per-particle state at the current time (unwrapped position).
+  Vec<D> position(std::int32_t i) const;
+  const Vec<D>& velocity(std::int32_t i) const { return vel_[i]; }
+  std::int32_t size() const { return static_cast<std::int32_t>(vel_.size()); }
+
+ private:
+  EventKind process_next();
+  void advance(std::int32_t i);
+  Vec<D> separation(std::int32_t i, const Vec<D>& xi, std::int32_t j) const;
+  void scan_cell(std::int32_t i, const Vec<D>& xi, std::int32_t cell);
+  void predict(std::int32_t i);
+  void predict_crossing(std::int32_t i, const Vec<D>& xi);
+  void schedule(std::int32_t i);
+  void collide_pair(std::int32_t i, std::int32_t j);
+  void collide_sticky(std::int32_t i, std::int32_t j);
+  void cross_cell(std::int32_t i);
+  void mark_moving(std::int32_t i);
+  void mark_active(std::int32_t i);
+  void cell_insert(std::int32_t i, std::int32_t cell);
+  void cell_remove(std::int32_t i, std::int32_t cell);
+
+  PhysicsConfig config_;
+  CellGrid<D> grid_;
+  double now_ = 0;
+  EngineStats stats_;
+
+  // One flat array per property (HOOMD-style). pos_ is wrapped into the box and refers to time
+  // tloc_; image_ counts box crossings so that unwrapped positions can be rebuilt exactly.
+  VecArray<D> pos_;
+  VecArray<D> vel_;
+  std::vector<double> tloc_;
+  std::vector<IVec<D>> cell_;
+  std::vector<IVec<D>> image_;
+  std::vector<std::uint32_t> counter_;  // bumped at every velocity change
+
+  // Cells as intrusive doubly linked lists.
+  std::vector<std::int32_t> head_, next_, prev_;
+
+  // The next event of each particle: best collision and next crossing.
+  std::vector<double> coll_time_;
+  std::vector<std::int32_t> coll_partner_;
+  std::vector<std::uint32_t> coll_counter_;  // partner's counter when predicted
+  std::vector<double> cross_time_;
+  std::vector<std::int8_t> cross_dir_;  // 2 * dimension + (1 if upwards)
+  EventQueue queue_;
+
+  std::vector<std::uint8_t> active_, moving_;
+  std::vector<double> first_collision_;
+  std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
+
+  // Sticky clusters (1D, r = 0): particles are indexed along the line, a cluster is a cyclic
+  // index range, and its two ends know each other.
+  std::vector<std::int32_t> cluster_lo_, cluster_hi_;
+};
+
+}  // namespace gs

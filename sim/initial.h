@@ -1,0 +1,28 @@
+#pragma once
+// Initial states: where the particles sit (random sequential addition, or a 1D lattice) and how
+// they move (all at rest but one kicked particle, or a Maxwell gas).
+#include <cstdint>
+
+#include "sim/config.h"
+#include "sim/rng.h"
+#include "sim/vec.h"
+
+namespace gs {
+
+template <int D>
+struct InitialState {
+  VecArray<D> position;  // in [0, L)^D; in 1D sorted along the line
+  VecArray<D> velocity;
+  std::int32_t kicked = -1;  // the kicked particle, or -1 for a thermal start
+};
+
+// Random sequential addition of n unit-diameter spheres in a periodic box of side L: each new
+// centre is uniform in the box and kept if it overlaps no earlier sphere. A cell grid makes each
+// trial O(1). Throws UserError if the box is too full to finish.
+template <int D>
+VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng);
+
+template <int D>
+InitialState<D> make_initial_state(const PhysicsConfig& c);
+
+}  // namespace gs
