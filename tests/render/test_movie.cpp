@@ -1,0 +1,536 @@
+// The movie writer, checked by decoding what it wrote with libavformat/libavcodec.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libswscale/swscale.h>
+}
+
+#include "render/movie_writer.h"
+#include "sim/error.h"
+#include "sim/stop.h"
+
+extern char** environ;
+
+namespace gs::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(GRAINSHOCK_TEST_OUTPUT_DIR) / "movie" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<fs::path> files_in(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename());
+  return out;
+}
+
+// Frame `k` of a test scene: a smooth gradient and five coloured discs, antialiased as the
+// renderer draws them, moving 3 px per frame in different directions, so that consecutive frames
+// differ and a frame can be told from its neighbours.
+Image scene(int w, int h, int k) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = img.pixel(x, y);
+      p[0] = static_cast<std::uint8_t>(20 + 60 * x / w);
+      p[1] = static_cast<std::uint8_t>(20 + 40 * y / h);
+      p[2] = static_cast<std::uint8_t>(60 + 80 * (x + y) / (w + h));
+      p[3] = 255;
+    }
+  const double colours[5][3] = {
+      {230, 40, 40}, {40, 220, 60}, {50, 80, 240}, {250, 220, 40}, {240, 240, 240}};
+  const double r = h / 8.0;
+  for (int d = 0; d < 5; ++d) {
+    const double angle = 1.3 * d;
+    const double cx = std::fmod(w * (0.15 + 0.17 * d) + 3.0 * k * std::cos(angle) + 4 * w, w);
+    const double cy = std::fmod(h * (0.2 + 0.15 * d) + 3.0 * k * std::sin(angle) + 4 * h, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double cover = std::clamp(r + 0.5 - std::hypot(x - cx, y - cy), 0.0, 1.0);
+        for (int c = 0; c < 3; ++c) {
+          std::uint8_t& v = img.pixel(x, y)[c];
+          v = static_cast<std::uint8_t>(std::lround(v * (1 - cover) + colours[d][c] * cover));
+        }
+      }
+  }
+  return img;
+}
+
+Image flat(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = img.pixel(x, y);
+      p[0] = r, p[1] = g, p[2] = b, p[3] = 255;
+    }
+  return img;
+}
+
+// PSNR over the RGB channels of the top-left w x h of both images.
+double psnr(const Image& a, const Image& b, int w, int h) {
+  double sum = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(a.pixel(x, y)[c]) - double(b.pixel(x, y)[c]);
+        sum += d * d;
+      }
+  const double mse = sum / (3.0 * w * h);
+  return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
+struct Decoded {
+  AVCodecID codec = AV_CODEC_ID_NONE;
+  int width = 0, height = 0;
+  AVRational avg_frame_rate{0, 1}, r_frame_rate{0, 1};
+  double duration = 0;          // seconds, as a player shows it
+  std::int64_t nb_frames = 0;   // as the container says
+  int frames = 0;               // as decoded
+  AVColorRange range = AVCOL_RANGE_UNSPECIFIED;
+  AVColorSpace space = AVCOL_SPC_UNSPECIFIED;
+  AVColorPrimaries primaries = AVCOL_PRI_UNSPECIFIED;
+  AVColorTransferCharacteristic trc = AVCOL_TRC_UNSPECIFIED;
+  std::vector<int> centre_luma;  // Y at the picture centre, per frame
+  Image rgb;                     // the frame asked for, back to RGB (BT.709, limited range)
+};
+
+// Decodes the whole movie; frame `keep` (in presentation order) is converted back to RGBA.
+Decoded decode(const fs::path& path, int keep = -1) {
+  Decoded out;
+  AVFormatContext* fmt = nullptr;
+  if (avformat_open_input(&fmt, path.c_str(), nullptr, nullptr) < 0) {
+    ADD_FAILURE() << "cannot open " << path;
+    return out;
+  }
+  EXPECT_GE(avformat_find_stream_info(fmt, nullptr), 0);
+  const AVCodec* codec = nullptr;
+  const int si = av_find_best_stream(fmt, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0);
+  EXPECT_GE(si, 0);
+  if (si < 0) {
+    avformat_close_input(&fmt);
+    return out;
+  }
+  const AVStream* st = fmt->streams[si];
+  out.codec = st->codecpar->codec_id;
+  out.width = st->codecpar->width;
+  out.height = st->codecpar->height;
+  out.avg_frame_rate = st->avg_frame_rate;
+  out.r_frame_rate = st->r_frame_rate;
+  out.duration = fmt->duration == AV_NOPTS_VALUE ? -1 : double(fmt->duration) / AV_TIME_BASE;
+  out.nb_frames = st->nb_frames;
+  out.range = st->codecpar->color_range;
+  out.space = st->codecpar->color_space;
+  out.primaries = st->codecpar->color_primaries;
+  out.trc = st->codecpar->color_trc;
+
+  AVCodecContext* dec = avcodec_alloc_context3(codec);
+  EXPECT_GE(avcodec_parameters_to_context(dec, st->codecpar), 0);
+  EXPECT_GE(avcodec_open2(dec, codec, nullptr), 0);
+  AVPacket* pkt = av_packet_alloc();
+  AVFrame* frame = av_frame_alloc();
+  auto take = [&] {
+    if (out.frames == keep) {
+      out.rgb = Image(frame->width, frame->height);
+      SwsContext* sws = sws_getContext(frame->width, frame->height, AVPixelFormat(frame->format),
+                                       frame->width, frame->height, AV_PIX_FMT_RGBA,
+                                       SWS_BILINEAR | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT,
+                                       nullptr, nullptr, nullptr);
+      const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
+      EXPECT_GE(sws_setColorspaceDetails(sws, bt709, 0, bt709, 1, 0, 1 << 16, 1 << 16), 0);
+      std::uint8_t* dst[1] = {out.rgb.rgba.data()};
+      const int stride[1] = {frame->width * 4};
+      sws_scale(sws, frame->data, frame->linesize, 0, frame->height, dst, stride);
+      sws_freeContext(sws);
+    }
+    out.centre_luma.push_back(frame->data[0][(frame->height / 2) * frame->linesize[0] + frame->width / 2]);
+    ++out.frames;
+  };
+  auto drain = [&] {
+    while (avcodec_receive_frame(dec, frame) == 0) {
+      take();
+      av_frame_unref(frame);
+    }
+  };
+  while (av_read_frame(fmt, pkt) >= 0) {
+    if (pkt->stream_index == si) {
+      EXPECT_GE(avcodec_send_packet(dec, pkt), 0);
+      drain();
+    }
+    av_packet_unref(pkt);
+  }
+  EXPECT_GE(avcodec_send_packet(dec, nullptr), 0);
+  drain();
+  av_frame_free(&frame);
+  av_packet_free(&pkt);
+  avcodec_free_context(&dec);
+  avformat_close_input(&fmt);
+  return out;
+}
+
+void write_scene(const fs::path& path, const MovieOptions& o, int frames) {
+  MovieWriter movie(path, o);
+  for (int k = 0; k < frames; ++k) movie.add(scene(o.width, o.height, k));
+  movie.finish();
+}
+
+// yuv420p keeps one chroma sample per 2x2 pixels (and 8-bit limited-range luma), so saturated disc
+// edges lose colour: the conversion round trip alone gives about 35 dB on this scene and CRF 18
+// costs little more. 30 dB (RMS error 8 of 255) is the bound; the neighbouring frame gives
+// about 20 dB (the negative controls below), and the colour matrix is checked exactly elsewhere.
+constexpr double kMinPsnr = 30.0;
+
+TEST(MovieWriter, H264ByDefaultWithRequestedTimingAndBt709Tags) {
+  const auto dir = fresh_dir("h264");
+  MovieOptions o;
+  o.width = 320;
+  o.height = 240;
+  o.fps = 24;
+  const int n = 48;
+  {
+    MovieWriter movie(dir / "movie.mp4", o);
+    const bool have_x264 = avcodec_find_encoder_by_name("libx264") != nullptr;
+    EXPECT_EQ(movie.encoder_name(), have_x264 ? "libx264" : "mpeg4");
+    for (int k = 0; k < n; ++k) movie.add(scene(o.width, o.height, k));
+    EXPECT_FALSE(fs::exists(dir / "movie.mp4")) << "the final name appears only when complete";
+    movie.finish();
+  }
+  EXPECT_EQ(files_in(dir), std::vector<fs::path>{"movie.mp4"}) << "no temporary file left behind";
+
+  const int k = 17;
+  const Decoded d = decode(dir / "movie.mp4", k);
+  EXPECT_EQ(d.codec, AV_CODEC_ID_H264);
+  EXPECT_EQ(d.width, 320);
+  EXPECT_EQ(d.height, 240);
+  EXPECT_EQ(d.frames, n);
+  EXPECT_EQ(d.nb_frames, n);
+  EXPECT_EQ(av_cmp_q(d.avg_frame_rate, AVRational{24, 1}), 0);
+  EXPECT_EQ(av_cmp_q(d.r_frame_rate, AVRational{24, 1}), 0);
+  EXPECT_NEAR(d.duration, n / 24.0, 1e-3);
+  EXPECT_EQ(d.range, AVCOL_RANGE_MPEG);
+  EXPECT_EQ(d.space, AVCOL_SPC_BT709);
+  EXPECT_EQ(d.primaries, AVCOL_PRI_BT709);
+  EXPECT_EQ(d.trc, AVCOL_TRC_BT709);
+
+  ASSERT_EQ(d.rgb.width, 320);
+  EXPECT_GE(psnr(d.rgb, scene(320, 240, k), 320, 240), kMinPsnr);
+  // Negative control: the test tells frame k from its neighbours.
+  EXPECT_LT(psnr(d.rgb, scene(320, 240, k + 2), 320, 240), kMinPsnr);
+}
+
+TEST(MovieWriter, FaststartPutsTheIndexFirst) {
+  const auto dir = fresh_dir("faststart");
+  MovieOptions o;
+  o.width = 64;
+  o.height = 48;
+  write_scene(dir / "movie.mp4", o, 10);
+  // MP4 top-level boxes: size (4 bytes, big endian), type (4 bytes). moov must precede mdat.
+  std::FILE* f = std::fopen((dir / "movie.mp4").c_str(), "rb");
+  ASSERT_TRUE(f);
+  std::vector<std::string> boxes;
+  unsigned char head[8];
+  long pos = 0;
+  while (std::fseek(f, pos, SEEK_SET) == 0 && std::fread(head, 1, 8, f) == 8) {
+    const long size = (long(head[0]) << 24) | (long(head[1]) << 16) | (long(head[2]) << 8) | head[3];
+    boxes.emplace_back(reinterpret_cast<char*>(head + 4), 4);
+    if (size < 8) break;
+    pos += size;
+  }
+  std::fclose(f);
+  const auto moov = std::find(boxes.begin(), boxes.end(), "moov");
+  const auto mdat = std::find(boxes.begin(), boxes.end(), "mdat");
+  ASSERT_NE(moov, boxes.end());
+  ASSERT_NE(mdat, boxes.end());
+  EXPECT_LT(moov - boxes.begin(), mdat - boxes.begin());
+}
+
+// Limited-range BT.709 luma of pure colours: Y = 16 + 219 (0.2126 R + 0.7152 G + 0.0722 B).
+// BT.601 would give 82 for red and 145 for green instead of 63 and 173.
+TEST(MovieWriter, ConvertsWithBt709LimitedRange) {
+  const auto dir = fresh_dir("bt709");
+  MovieOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.crf = 0;  // lossless x264, so only the colour conversion is measured (mpeg4 stays near)
+  {
+    MovieWriter movie(dir / "movie.mp4", o);
+    movie.add(flat(64, 48, 255, 0, 0));
+    movie.add(flat(64, 48, 0, 255, 0));
+    movie.add(flat(64, 48, 255, 255, 255));
+    movie.add(flat(64, 48, 0, 0, 0));
+    movie.finish();
+  }
+  const Decoded d = decode(dir / "movie.mp4");
+  ASSERT_EQ(d.centre_luma.size(), 4u);
+  EXPECT_NEAR(d.centre_luma[0], 63, 2);
+  EXPECT_NEAR(d.centre_luma[1], 173, 2);
+  EXPECT_NEAR(d.centre_luma[2], 235, 2);
+  EXPECT_NEAR(d.centre_luma[3], 16, 2);
+}
+
+TEST(MovieWriter, OddSizesArePaddedByRepeatingTheEdge) {
+  const auto dir = fresh_dir("odd");
+  MovieOptions o;
+  o.width = 321;
+  o.height = 241;
+  o.fps = 25;
+  {
+    MovieWriter movie(dir / "movie.mp4", o);
+    EXPECT_EQ(movie.encoded_width(), 322);
+    EXPECT_EQ(movie.encoded_height(), 242);
+    for (int k = 0; k < 10; ++k) movie.add(scene(o.width, o.height, k));
+    movie.finish();
+  }
+  const Decoded d = decode(dir / "movie.mp4", 5);
+  EXPECT_EQ(d.width, 322);
+  EXPECT_EQ(d.height, 242);
+  EXPECT_EQ(d.frames, 10);
+  ASSERT_EQ(d.rgb.width, 322);
+  const Image src = scene(o.width, o.height, 5);
+  EXPECT_GE(psnr(d.rgb, src, o.width, o.height), kMinPsnr);
+  // The added column and row repeat the picture's last ones (not black).
+  double diff = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int c = 0; c < 3; ++c) diff += std::abs(d.rgb.pixel(321, y)[c] - src.pixel(320, y)[c]);
+  for (int x = 0; x < o.width; ++x)
+    for (int c = 0; c < 3; ++c) diff += std::abs(d.rgb.pixel(x, 241)[c] - src.pixel(x, 240)[c]);
+  EXPECT_LT(diff / (3.0 * (o.width + o.height)), 8.0);
+}
+
+TEST(MovieWriter, Mpeg4FallbackCodec) {
+  const auto dir = fresh_dir("mpeg4");
+  MovieOptions o;
+  o.codec = "mpeg4";
+  o.width = 320;
+  o.height = 240;
+  o.fps = 30;
+  const int n = 45;
+  {
+    MovieWriter movie(dir / "movie.mp4", o);
+    EXPECT_EQ(movie.encoder_name(), "mpeg4");
+    for (int k = 0; k < n; ++k) movie.add(scene(o.width, o.height, k));
+    movie.finish();
+  }
+  const int k = 40;
+  const Decoded d = decode(dir / "movie.mp4", k);
+  EXPECT_EQ(d.codec, AV_CODEC_ID_MPEG4);
+  EXPECT_EQ(d.width, 320);
+  EXPECT_EQ(d.height, 240);
+  EXPECT_EQ(d.frames, n);
+  EXPECT_EQ(av_cmp_q(d.avg_frame_rate, AVRational{30, 1}), 0);
+  EXPECT_NEAR(d.duration, n / 30.0, 1e-3);
+  ASSERT_EQ(d.rgb.width, 320);
+  EXPECT_GE(psnr(d.rgb, scene(320, 240, k), 320, 240), kMinPsnr);
+  EXPECT_LT(psnr(d.rgb, scene(320, 240, k - 2), 320, 240), kMinPsnr);
+}
+
+TEST(MovieWriter, StopSignalFinishesAPlayableMovie) {
+  const auto dir = fresh_dir("stop_flag");
+  MovieOptions o;
+  o.width = 96;
+  o.height = 64;
+  gs::clear_stop();
+  gs::install_stop_handlers();
+  int written = 0;
+  {
+    MovieWriter movie(dir / "movie.mp4", o);
+    for (int k = 0; k < 1000 && !gs::stop_requested(); ++k) {
+      movie.add(scene(o.width, o.height, k));
+      ++written;
+      if (k == 29) std::raise(SIGTERM);  // a real signal, caught by the handler
+    }
+    movie.finish();
+  }
+  EXPECT_EQ(gs::stop_signal(), SIGTERM);
+  gs::clear_stop();
+  EXPECT_EQ(written, 30);
+  const Decoded d = decode(dir / "movie.mp4");
+  EXPECT_EQ(d.frames, 30);
+  EXPECT_NEAR(d.duration, 30 / 30.0, 1e-3);
+}
+
+struct Child {
+  pid_t pid = -1;
+  std::FILE* out = nullptr;  // the child's stdout
+};
+
+Child spawn_helper(const fs::path& movie) {
+  int fds[2];
+  EXPECT_EQ(pipe(fds), 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  std::string helper = MOVIE_STOP_HELPER, arg = movie.string();
+  char* argv[] = {helper.data(), arg.data(), nullptr};
+  Child c;
+  EXPECT_EQ(posix_spawn(&c.pid, helper.c_str(), &actions, nullptr, argv, environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  c.out = fdopen(fds[0], "r");
+  return c;
+}
+
+std::string read_line(std::FILE* f) {
+  char buf[256];
+  return std::fgets(buf, sizeof buf, f) ? std::string(buf) : std::string();
+}
+
+TEST(MovieWriter, ChildKilledWithSigtermLeavesAPlayableMovie) {
+  const auto dir = fresh_dir("sigterm");
+  Child c = spawn_helper(dir / "movie.mp4");
+  ASSERT_EQ(read_line(c.out), "ready\n");
+  ASSERT_EQ(kill(c.pid, SIGTERM), 0);
+  const std::string last = read_line(c.out);
+  std::fclose(c.out);
+  int status = 0;
+  ASSERT_EQ(waitpid(c.pid, &status, 0), c.pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "the helper died of the signal instead of finishing";
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  int frames = -1;
+  ASSERT_EQ(std::sscanf(last.c_str(), "frames %d", &frames), 1) << last;
+  EXPECT_GE(frames, 20);
+  EXPECT_EQ(files_in(dir), std::vector<fs::path>{"movie.mp4"});
+  const Decoded d = decode(dir / "movie.mp4");
+  EXPECT_EQ(d.frames, frames);
+  EXPECT_NEAR(d.duration, frames / 30.0, 1e-3);
+}
+
+TEST(MovieWriter, ChildKilledOutrightLeavesNoMovie) {
+  const auto dir = fresh_dir("sigkill");
+  Child c = spawn_helper(dir / "movie.mp4");
+  ASSERT_EQ(read_line(c.out), "ready\n");
+  ASSERT_EQ(kill(c.pid, SIGKILL), 0);
+  std::fclose(c.out);
+  int status = 0;
+  ASSERT_EQ(waitpid(c.pid, &status, 0), c.pid);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  // Only the hidden temporary file can be there; nothing named movie.mp4 pretends to be a movie.
+  EXPECT_FALSE(fs::exists(dir / "movie.mp4"));
+}
+
+TEST(MovieWriter, UnknownCodecIsAUserErrorAndLeavesNoFile) {
+  const auto dir = fresh_dir("unknown_codec");
+  MovieOptions o;
+  o.codec = "vp13";
+  o.width = 64;
+  o.height = 48;
+  try {
+    MovieWriter movie(dir / "movie.mp4", o);
+    FAIL() << "no error for an unknown codec";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("vp13"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(MovieWriter, UnwritablePathIsAUserErrorAndLeavesNoFile) {
+  const auto dir = fresh_dir("unwritable");
+  MovieOptions o;
+  o.width = 64;
+  o.height = 48;
+  const fs::path path = dir / "missing-folder" / "movie.mp4";
+  try {
+    MovieWriter movie(path, o);
+    FAIL() << "no error for a path in a missing folder";
+  } catch (const UserError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("No such file or directory"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(MovieWriter, BadOptionsAreUserErrors) {
+  const auto dir = fresh_dir("bad_options");
+  auto opens = [&](const MovieOptions& o, const std::string& name = "movie.mp4") {
+    try {
+      MovieWriter movie(dir / name, o);
+      movie.discard();
+      return true;
+    } catch (const UserError& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      return false;
+    }
+  };
+  MovieOptions good;
+  good.width = 64;
+  good.height = 48;
+  EXPECT_TRUE(opens(good));
+  MovieOptions o = good;
+  for (double fps : {0.0, -5.0, double(NAN), double(INFINITY)}) {
+    o.fps = fps;
+    EXPECT_FALSE(opens(o)) << "fps " << fps;
+  }
+  o = good;
+  o.crf = 52;
+  EXPECT_FALSE(opens(o));
+  o = good;
+  o.width = 0;
+  EXPECT_FALSE(opens(o));
+  if (avcodec_find_encoder_by_name("libx264")) {  // mpeg4 has no presets
+    o = good;
+    o.preset = "warp";
+    EXPECT_FALSE(opens(o));
+  }
+  o = good;
+  o.codec = "";
+  EXPECT_FALSE(opens(o));
+  EXPECT_FALSE(opens(good, "movie.unknownext"));
+  EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(MovieWriter, ExceptionWhileWritingRemovesThePartialFile) {
+  const auto dir = fresh_dir("exception");
+  MovieOptions o;
+  o.width = 64;
+  o.height = 48;
+  try {
+    MovieWriter movie(dir / "movie.mp4", o);
+    for (int k = 0; k < 10; ++k) movie.add(scene(64, 48, k));
+    throw std::runtime_error("the simulation failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(MovieWriter, DiscardLeavesNoFileAndDestructorFinishes) {
+  const auto dir = fresh_dir("discard");
+  MovieOptions o;
+  o.width = 64;
+  o.height = 48;
+  {
+    MovieWriter movie(dir / "discarded.mp4", o);
+    for (int k = 0; k < 5; ++k) movie.add(scene(64, 48, k));
+    movie.discard();
+  }
+  EXPECT_TRUE(files_in(dir).empty());
+  {
+    MovieWriter movie(dir / "kept.mp4", o);
+    for (int k = 0; k < 7; ++k) movie.add(scene(64, 48, k));
+  }
+  EXPECT_EQ(files_in(dir), std::vector<fs::path>{"kept.mp4"});
+  EXPECT_EQ(decode(dir / "kept.mp4").frames, 7);
+}
+
+}  // namespace
+}  // namespace gs::render
