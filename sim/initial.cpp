@@ -42,6 +42,40 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
   return pos;
 }
 
+template <int D>
+VecArray<D> cubic_lattice(std::int64_t n, double box) {
+  const auto k = static_cast<std::int64_t>(std::ceil(std::pow(static_cast<double>(n), 1.0 / D) - 1e-9));
+  const double a = box / static_cast<double>(k);
+  GS_CHECK_MSG(a >= 1.0, "lattice spacing below one diameter");
+  VecArray<D> pos(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int64_t rest = i;
+    for (int d = 0; d < D; ++d, rest /= k) pos[i][d] = (static_cast<double>(rest % k) + 0.5) * a;
+  }
+  return pos;
+}
+
+template <int D>
+VecArray<D> thermal_velocities(std::int64_t count, double temperature, Rng& rng) {
+  const auto n = static_cast<std::size_t>(count);
+  VecArray<D> vel(n);
+  Vec<D> mean = Vec<D>::Zero();
+  for (auto& v : vel) {
+    for (int k = 0; k < D; ++k) v[k] = rng.normal();
+    mean += v;
+  }
+  mean /= static_cast<double>(n);
+  double sum_v2 = 0;
+  for (auto& v : vel) {
+    v -= mean;
+    sum_v2 += v.squaredNorm();
+  }
+  // Rescale so that T = sum v^2 / (d N) is exactly the requested temperature (unit mass).
+  const double scale = std::sqrt(temperature * D * static_cast<double>(n) / sum_v2);
+  for (auto& v : vel) v *= scale;
+  return vel;
+}
+
 namespace {
 
 // In 1D an exact uniform sample of non-overlapping rods exists: N uniform points on a line of
@@ -69,6 +103,28 @@ Vec<D> random_direction(Rng& rng) {
   }
 }
 
+// Translates the periodic system so that the kicked particle sits at the centre of the box, as in
+// the paper's Fig. 1 (kick at (500, 500) in a box of side 1000). The disturbance then grows from
+// the middle and its unwrapped positions never straddle the box edge while it fits in the box.
+// In 1D the particles are renumbered so that indices still run along the line.
+template <int D>
+void centre_on(InitialState<D>& s, double box) {
+  const Vec<D> shift = Vec<D>::Constant(0.5 * box) - s.position[s.kicked];
+  for (auto& x : s.position) {
+    x += shift;
+    for (int k = 0; k < D; ++k) x[k] -= box * std::floor(x[k] / box);
+  }
+  if constexpr (D == 1) {
+    const auto first = std::min_element(s.position.begin(), s.position.end(),
+                                        [](const Vec<1>& a, const Vec<1>& b) { return a[0] < b[0]; });
+    const auto rotate_by = first - s.position.begin();
+    std::rotate(s.position.begin(), first, s.position.end());
+    std::rotate(s.velocity.begin(), s.velocity.begin() + rotate_by, s.velocity.end());
+    const auto n = static_cast<std::int32_t>(s.position.size());
+    s.kicked = static_cast<std::int32_t>((s.kicked - rotate_by + n) % n);
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -90,24 +146,11 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
     s.position = random_sequential_addition<D>(c.particles, box, pos_rng);
   }
 
-  s.velocity.assign(n, Vec<D>::Zero());
   if (c.initial == Initial::Thermal) {
     Rng vel_rng(c.seed, c.realisation, Stream::Velocities);
-    Vec<D> mean = Vec<D>::Zero();
-    for (auto& v : s.velocity) {
-      for (int k = 0; k < D; ++k) v[k] = vel_rng.normal();
-      mean += v;
-    }
-    mean /= static_cast<double>(n);
-    double sum_v2 = 0;
-    for (auto& v : s.velocity) {
-      v -= mean;
-      sum_v2 += v.squaredNorm();
-    }
-    // Rescale so that T = sum v^2 / (d N) is exactly the requested temperature (unit mass).
-    const double scale = std::sqrt(c.temperature * D * static_cast<double>(n) / sum_v2);
-    for (auto& v : s.velocity) v *= scale;
+    s.velocity = thermal_velocities<D>(c.particles, c.temperature, vel_rng);
   } else {
+    s.velocity.assign(n, Vec<D>::Zero());
     Rng kick_rng(c.seed, c.realisation, Stream::Kick);
     if (c.kick_site == KickSite::Centre) {
       const Vec<D> centre = Vec<D>::Constant(0.5 * box);
@@ -120,6 +163,7 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
       s.kicked = static_cast<std::int32_t>(kick_rng.below(n));
     }
     s.velocity[s.kicked] = c.speed * random_direction<D>(kick_rng);
+    centre_on(s, box);
   }
   return s;
 }
@@ -127,6 +171,12 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
 template VecArray<1> random_sequential_addition<1>(std::int64_t, double, Rng&);
 template VecArray<2> random_sequential_addition<2>(std::int64_t, double, Rng&);
 template VecArray<3> random_sequential_addition<3>(std::int64_t, double, Rng&);
+template VecArray<1> cubic_lattice<1>(std::int64_t, double);
+template VecArray<2> cubic_lattice<2>(std::int64_t, double);
+template VecArray<3> cubic_lattice<3>(std::int64_t, double);
+template VecArray<1> thermal_velocities<1>(std::int64_t, double, Rng&);
+template VecArray<2> thermal_velocities<2>(std::int64_t, double, Rng&);
+template VecArray<3> thermal_velocities<3>(std::int64_t, double, Rng&);
 template InitialState<1> make_initial_state<1>(const PhysicsConfig&);
 template InitialState<2> make_initial_state<2>(const PhysicsConfig&);
 template InitialState<3> make_initial_state<3>(const PhysicsConfig&);

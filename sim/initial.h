@@ -22,6 +22,17 @@ struct InitialState {
 template <int D>
 VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng);
 
+// Maxwell velocities at `temperature` (unit mass), total momentum removed, then rescaled so that
+// sum v^2 / (d n) equals the temperature exactly.
+template <int D>
+VecArray<D> thermal_velocities(std::int64_t n, double temperature, Rng& rng);
+
+// The first n sites of a simple cubic (square) lattice filling the box: a start for dense gases
+// that random sequential addition cannot reach (benchmarks at packing 0.5). GS_CHECKs that the
+// spacing is at least a diameter.
+template <int D>
+VecArray<D> cubic_lattice(std::int64_t n, double box);
+
 template <int D>
 InitialState<D> make_initial_state(const PhysicsConfig& c);
 

@@ -1,0 +1,54 @@
+#pragma once
+// Running the grainshock binary from tests: exit code, stderr lines, scratch folders.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace gs::test {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string err;
+  int err_lines() const {
+    int n = 0;
+    for (char ch : err) n += ch == '\n';
+    return n;
+  }
+};
+
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  auto dir = std::filesystem::path(GRAINSHOCK_TEST_OUTPUT_DIR) / info->test_suite_name() /
+             (std::string(info->name()) + "_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir.parent_path());
+  return dir;
+}
+
+inline std::string read_file(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Runs `grainshock ARGS` with stdout discarded and stderr captured.
+inline CommandResult grainshock(const std::string& args) {
+  const auto err_file = std::filesystem::temp_directory_path() /
+                        ("grainshock_test_err_" + std::to_string(::getpid()));
+  const std::string cmd =
+      std::string(GRAINSHOCK_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.err = read_file(err_file);
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+}  // namespace gs::test

@@ -1,0 +1,114 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sim/xyz.h"
+#include "tests/apps/cli_test_util.h"
+
+namespace gs {
+namespace {
+
+using test::grainshock;
+using test::read_file;
+using test::scratch_dir;
+namespace fs = std::filesystem;
+
+const std::string kSmall = "--particles 3000 --t-max 300 --restitution 0.5 --quiet";
+
+TEST(CliRun, WritesTheRunFolder) {
+  const auto dir = scratch_dir("run");
+  const auto r = grainshock("run " + kSmall + " --snapshot-times 100,200 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"run.toml", "timeseries.csv", "summary.json", "snapshots/t_100.xyz",
+                        "snapshots/t_200.xyz", "snapshots/t_300.xyz"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const std::string csv = read_file(dir / "timeseries.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "t,t_paper,active,energy,radius_rms,speed_rms,collisions,events,overlaps,px,py");
+  const std::string summary = read_file(dir / "summary.json");
+  for (const char* key : {"\"version\"", "\"seed\"", "\"setup_seconds\"", "\"run_seconds\"",
+                          "\"events\"", "\"collisions\"", "\"overlaps\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key;
+  const Snapshot s = read_xyz((dir / "snapshots/t_300.xyz").string());
+  EXPECT_EQ(s.size(), 3000u);
+  EXPECT_EQ(s.info.dim, 2);
+  EXPECT_DOUBLE_EQ(s.info.time, 300.0);
+}
+
+TEST(CliRun, SameConfigAndSeedGiveIdenticalBytes) {
+  const auto a = scratch_dir("a"), b = scratch_dir("b"), c = scratch_dir("c");
+  ASSERT_EQ(grainshock("run " + kSmall + " --seed 7 --out " + a.string()).exit_code, 0);
+  ASSERT_EQ(grainshock("run " + kSmall + " --seed 7 --out " + b.string()).exit_code, 0);
+  EXPECT_EQ(read_file(a / "timeseries.csv"), read_file(b / "timeseries.csv"));
+  // The written run.toml reproduces the run on its own.
+  ASSERT_EQ(grainshock("run --quiet --config " + (a / "run.toml").string() + " --out " + c.string())
+                .exit_code,
+            0);
+  EXPECT_EQ(read_file(a / "timeseries.csv"), read_file(c / "timeseries.csv"));
+  const auto d = scratch_dir("d");
+  ASSERT_EQ(grainshock("run " + kSmall + " --seed 8 --out " + d.string()).exit_code, 0);
+  EXPECT_NE(read_file(a / "timeseries.csv"), read_file(d / "timeseries.csv"));
+}
+
+TEST(CliRun, ThermalRunsReportPressure) {
+  const auto dir = scratch_dir("thermal");
+  ASSERT_EQ(grainshock("run --initial thermal --dim 3 --particles 2000 --t-max 5 --restitution 1 "
+                       "--quiet --out " + dir.string())
+                .exit_code,
+            0);
+  const std::string csv = read_file(dir / "timeseries.csv");
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find("pz,pressure,collision_rate"), std::string::npos);
+}
+
+// Bad input: one line on stderr naming the problem, a non-zero exit, and an existing folder
+// with earlier results left exactly as it was.
+TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
+  const auto dir = scratch_dir("earlier");
+  fs::create_directories(dir);
+  { std::ofstream(dir / "timeseries.csv") << "earlier results\n"; }
+  const std::string out = " --out " + dir.string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"run --bogus", "--bogus"},
+      {"run --dim 4", "--dim"},
+      {"run --particles 1", "--particles"},
+      {"run --density 0", "--density"},
+      {"run --density 0.9", "--density"},
+      {"run --dim 3 --density 0.8", "--density"},
+      {"run --restitution 1.2", "--restitution"},
+      {"run --restitution -0.5", "--restitution"},
+      {"run --cutoff -1", "--cutoff"},
+      {"run --t-max 0", "--t-max"},
+      {"run --t-max -3", "--t-max"},
+      {"run --initial warm", "--initial"},
+      {"run --lattice 0.5 --dim 1", "--lattice"},
+      {"run --particles 100 --t-max 1", "not empty"},
+  };
+  for (const auto& [args, names] : cases) {
+    const auto r = grainshock(args + out);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(read_file(dir / "timeseries.csv"), "earlier results\n") << args;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << args;
+  }
+  const auto cfg = scratch_dir("bad.toml");
+  { std::ofstream(cfg) << "dim = \n"; }
+  auto r = grainshock("run --config " + cfg.string() + out);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("malformed"), std::string::npos) << r.err;
+  { std::ofstream(cfg) << "dimension = 3\n"; }
+  r = grainshock("run --config " + cfg.string() + out);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("unknown key 'dimension'"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(dir / "timeseries.csv"), "earlier results\n");
+}
+
+TEST(CliRun, HelpOnEveryLevel) {
+  EXPECT_EQ(grainshock("--help").exit_code, 0);
+  EXPECT_EQ(grainshock("run --help").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace gs
