@@ -1,0 +1,115 @@
+#include "analysis/crossover.h"
+
+#include <cmath>
+#include <vector>
+
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs {
+namespace {
+
+struct Marked {
+  std::vector<std::size_t> index;  // samples in range with a finite slope
+  std::vector<double> deviation;   // |s - target| - tolerance |target|: <= 0 inside the band
+};
+
+Marked mark(std::span<const double> t, std::span<const double> y, const SlopeCrossoverOptions& o) {
+  if (!std::isfinite(o.target) || o.target == 0)
+    throw UserError("crossover target slope must be finite and non-zero");
+  if (!(o.tolerance > 0)) throw UserError("crossover tolerance must be positive");
+  const auto s = local_slope(t, y, o.half_width_decades);
+  Marked m;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < o.t_lo || t[i] > o.t_hi || !std::isfinite(s[i])) continue;
+    m.index.push_back(i);
+    m.deviation.push_back(std::fabs(s[i] - o.target) - o.tolerance * std::fabs(o.target));
+  }
+  return m;
+}
+
+// The time between samples a and b where the deviation crosses zero, linear in ln t.
+double interpolate(std::span<const double> t, std::size_t a, std::size_t b, double da, double db) {
+  const double f = da / (da - db);
+  return std::exp(std::log(t[a]) + f * (std::log(t[b]) - std::log(t[a])));
+}
+
+}  // namespace
+
+Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
+                          const SlopeCrossoverOptions& o) {
+  const Marked m = mark(t, y, o);
+  Crossover c;
+  const std::size_t n = m.index.size();
+  if (n < 2) {
+    c.note = "fewer than 2 usable samples in the examined range";
+    return c;
+  }
+  if (m.deviation[n - 1] > 0) {
+    c.note = "the local slope is not within tolerance of " + format_double(o.target) +
+             " at the end of the range (scaling regime not reached)";
+    return c;
+  }
+  std::size_t k = n - 1;  // first sample of the final in-band run
+  while (k > 0 && m.deviation[k - 1] <= 0) --k;
+  if (k == 0) {
+    c.note = "the local slope is within tolerance from the first sample (crossover before the data)";
+    return c;
+  }
+  c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
+  c.found = true;
+  return c;
+}
+
+Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
+                          const SlopeCrossoverOptions& o) {
+  const Marked m = mark(t, y, o);
+  Crossover c;
+  const std::size_t n = m.index.size();
+  if (n < 2) {
+    c.note = "fewer than 2 usable samples in the examined range";
+    return c;
+  }
+  if (m.deviation[n - 1] <= 0) {
+    c.note = "the local slope is still within tolerance at the end of the range (crossover not reached)";
+    return c;
+  }
+  std::size_t k = n - 1;  // first sample of the final out-of-band run
+  while (k > 0 && m.deviation[k - 1] > 0) --k;
+  if (k == 0) {
+    c.note = "the local slope is never within tolerance of " + format_double(o.target);
+    return c;
+  }
+  c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
+  c.found = true;
+  return c;
+}
+
+double crossover_intersection(const PowerLawFit& early, const PowerLawFit& late) {
+  const double db = early.exponent - late.exponent;
+  if (!(std::fabs(db) > 0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::exp((std::log(late.prefactor) - std::log(early.prefactor)) / db);
+}
+
+CrossoverExponent fit_crossover_exponent(std::span<const double> control,
+                                         std::span<const double> crossover_time) {
+  if (control.size() != crossover_time.size())
+    throw UserError("crossover fit: as many control values as crossover times needed");
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < control.size(); ++i) {
+    if (!(control[i] > 0) || !(crossover_time[i] > 0))
+      throw UserError("crossover fit: control " + format_double(control[i]) + " and time " +
+                      format_double(crossover_time[i]) + " must be positive");
+    x.push_back(std::log(control[i]));
+    y.push_back(std::log(crossover_time[i]));
+  }
+  const Line l = fit_line(x, y);
+  CrossoverExponent e;
+  e.phi = -l.slope;
+  e.standard_error = l.slope_error;
+  e.prefactor = std::exp(l.intercept);
+  e.points = l.points;
+  return e;
+}
+
+}  // namespace gs

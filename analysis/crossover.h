@@ -1,0 +1,58 @@
+#pragma once
+// Crossover times of the paper: t_c1, when N_t enters its scaling regime (diverging as
+// (1 - r^2)^-phi1 in the elastic limit, phi1 ~ 2.25 in 2D, 3.0 in 3D), and t_c2, when the band
+// has slowed to v_t ~ delta and collisions turn elastic (t_c2 ~ delta^-phi2, phi2 = 1/(1 - alpha)).
+//
+// Definition used (slope rule): with s(t) the local log-slope of N_t (power_law.h) and the target
+// its asymptotic value alpha d,
+//   t_c1 = the time from which s stays within `tolerance` (relative) of the target up to the end
+//          of the examined range;
+//   t_c2 = the time after which s stays out of that band up to the end of the examined range.
+// Each is located between the two samples where the rule switches, by linear interpolation of
+// s in ln t. If N_t = t_c^a g(t / t_c) for a family of runs (one crossover shape, shifted), the
+// slope rule gives a fixed multiple of t_c, so exponents such as phi1 come out right whatever the
+// tolerance; it needs no early-time fit, which for small r has no points. The intersection of
+// early and late power-law fits is given as an alternative.
+#include <limits>
+#include <span>
+#include <string>
+
+#include "analysis/power_law.h"
+
+namespace gs {
+
+struct SlopeCrossoverOptions {
+  double target = std::numeric_limits<double>::quiet_NaN();  // e.g. alpha d for N_t
+  double tolerance = 0.1;  // relative: |s - target| <= tolerance |target| is "in the regime"
+  double half_width_decades = 0.1;  // smoothing of the local slope
+  double t_lo = 0;  // examined range; for t_c1 end it before t_c2 where the data reach it
+  double t_hi = std::numeric_limits<double>::infinity();
+};
+
+struct Crossover {
+  double time = std::numeric_limits<double>::quiet_NaN();
+  bool found = false;
+  std::string note;  // why not found
+};
+
+Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
+                          const SlopeCrossoverOptions& options);  // t_c1
+Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
+                          const SlopeCrossoverOptions& options);  // t_c2
+
+// Where two power laws a1 t^b1 and a2 t^b2 meet: (a2 / a1)^(1 / (b1 - b2)). NaN if parallel.
+double crossover_intersection(const PowerLawFit& early, const PowerLawFit& late);
+
+// The exponent phi of t_c ~ control^-phi across runs (control = 1 - r^2 for phi1, delta for
+// phi2): minus the least-squares slope of ln t_c against ln control, with its standard error
+// (from the scatter of >= 3 points). UserError on fewer than 3 points or values <= 0.
+struct CrossoverExponent {
+  double phi = std::numeric_limits<double>::quiet_NaN();
+  double standard_error = std::numeric_limits<double>::quiet_NaN();
+  double prefactor = std::numeric_limits<double>::quiet_NaN();  // t_c = prefactor control^-phi
+  std::size_t points = 0;
+};
+CrossoverExponent fit_crossover_exponent(std::span<const double> control,
+                                         std::span<const double> crossover_time);
+
+}  // namespace gs

@@ -1,0 +1,238 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "analysis/collapse.h"
+#include "analysis/crossover.h"
+#include "analysis/power_law.h"
+#include "sim/error.h"
+#include "sim/observables.h"
+#include "sim/rng.h"
+
+namespace gs {
+namespace {
+
+// Log-spaced times, `per_decade` samples per decade from t0 to t1.
+std::vector<double> log_grid(double t0, double t1, int per_decade) {
+  std::vector<double> t;
+  const int n = int(std::lround(std::log10(t1 / t0) * per_decade));
+  for (int i = 0; i <= n; ++i) t.push_back(t0 * std::pow(10.0, double(i) / per_decade));
+  return t;
+}
+
+// M realisations of A_k t^a exp(sigma xi): a random amplitude per realisation (which does not
+// change the exponent) and independent 20% log-normal noise at every sample.
+std::vector<std::vector<double>> noisy_power_laws(std::span<const double> t, double a, int M,
+                                                  std::uint64_t seed) {
+  Rng rng(seed, 0, Stream::Positions);
+  std::vector<std::vector<double>> c(std::size_t(M), std::vector<double>(t.size()));
+  for (auto& curve : c) {
+    const double amp = 3 * std::exp(0.3 * rng.normal());
+    for (std::size_t i = 0; i < t.size(); ++i)
+      curve[i] = amp * std::pow(t[i], a) * std::exp(0.2 * rng.normal());
+  }
+  return c;
+}
+
+TEST(PowerLaw, RecoversExponentOfNoisyEnsembleWithBootstrapInterval) {
+  const auto t = log_grid(10, 1e4, 33);  // 100 samples over 3 decades
+  for (double a : {2.0 / 3.0, -2.0 / 3.0, 0.25}) {
+    const auto curves = noisy_power_laws(t, a, 40, 17);
+    const PowerLawFit f = fit_power_law_bootstrap(t, curves, {10, 1e4}, {.resamples = 500});
+    // Expected spread: the mean of 40 curves has ~0.2/sqrt(40) = 0.032 noise in ln y per sample;
+    // over 100 samples with std(ln t) = 2.0 the slope error is 0.032 / (10 * 2.0) = 0.0016.
+    // Tolerance 0.01 is six of these standard errors.
+    EXPECT_NEAR(f.exponent, a, 0.01);
+    EXPECT_LE(f.ci_lo, a);
+    EXPECT_GE(f.ci_hi, a);
+    // The bootstrap half-width should be 1.96 * 0.0016 = 0.0031; a factor of 2 either way leaves
+    // room for the ~11% sampling error of a bootstrap over 40 realisations.
+    const double half = 0.5 * (f.ci_hi - f.ci_lo);
+    EXPECT_GT(half, 0.0031 / 2);
+    EXPECT_LT(half, 0.0031 * 2);
+    EXPECT_EQ(f.points, t.size());
+  }
+  // A curve of the wrong exponent is not mistaken for the right one.
+  const auto other = noisy_power_laws(t, 0.75, 40, 17);
+  EXPECT_GT(std::fabs(fit_power_law_bootstrap(t, other, {10, 1e4}).exponent - 2.0 / 3.0), 0.05);
+}
+
+TEST(PowerLaw, BootstrapIsReproducible) {
+  const auto t = log_grid(10, 1e3, 20);
+  const auto curves = noisy_power_laws(t, 0.5, 10, 4);
+  const auto a = fit_power_law_bootstrap(t, curves, {10, 1e3}, {.resamples = 100, .seed = 9});
+  const auto b = fit_power_law_bootstrap(t, curves, {10, 1e3}, {.resamples = 100, .seed = 9});
+  const auto c = fit_power_law_bootstrap(t, curves, {10, 1e3}, {.resamples = 100, .seed = 10});
+  EXPECT_EQ(a.ci_lo, b.ci_lo);
+  EXPECT_EQ(a.ci_hi, b.ci_hi);
+  EXPECT_NE(a.ci_lo, c.ci_lo);  // another seed draws other resamples
+}
+
+TEST(PowerLaw, AutomaticWindowFindsTheLateRegime) {
+  // Slope 2 early, 1/2 late: s(t) = 2 - 1.5 x / (1 + x), x = t / 100. Within +-0.05 of each
+  // other the late slopes span [0.5, 0.6], i.e. 1.5 / (1 + x) <= 0.1, t >= 1400: three decades up
+  // to 1e6, against less than one decade for the early regime (t <= 7).
+  const auto t = log_grid(1, 1e6, 40);
+  std::vector<double> y;
+  for (double ti : t) y.push_back(ti * ti * std::pow(1 + ti / 100, -1.5));
+  const Window w = auto_window(t, y);
+  // Tolerance: the local slope is a smoothed estimate over +-0.1 decade and the grid has 40
+  // samples a decade, so the edge can move by a few samples from 1400 (a factor 10^0.1).
+  EXPECT_GT(w.t_lo, 1400 / 1.3);
+  EXPECT_LT(w.t_lo, 1400 * 1.3);
+  EXPECT_EQ(w.t_hi, t.back());
+  const PowerLawFit f = fit_power_law(t, y, w);
+  EXPECT_GE(f.exponent, 0.5);  // every local slope in the window lies in [0.5, 0.6]
+  EXPECT_LE(f.exponent, 0.6);
+  // Restricted to early times, the early regime is found instead.
+  const Window e = auto_window(t, y, {.min_decades = 0.3, .t_max = 10});
+  EXPECT_LT(e.t_hi, 10.0);
+  EXPECT_NEAR(fit_power_law(t, y, e).exponent, 2.0, 0.1);  // its slopes lie in [1.9, 2]
+}
+
+TEST(PowerLaw, RejectsBadWindows) {
+  const auto t = log_grid(10, 1e3, 10);
+  std::vector<double> y(t.size(), 1.0);
+  auto message = [&](Window w) {
+    try {
+      fit_power_law(t, y, w);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message({1, 100}).find("outside the data"), std::string::npos);
+  EXPECT_NE(message({100, 1e5}).find("outside the data"), std::string::npos);
+  EXPECT_NE(message({100, 50}).find("scaling window"), std::string::npos);
+  EXPECT_NE(message({100, 110}).find("fewer than 3"), std::string::npos);
+  y[5] = 0;
+  EXPECT_NE(message({10, 1e3}).find("not positive"), std::string::npos);
+  std::vector<double> flat(t.size(), 1.0);
+  for (std::size_t i = 0; i < t.size(); ++i) flat[i] = std::sin(double(i)) + 2;  // no power law
+  EXPECT_THROW(auto_window(t, flat), UserError);
+}
+
+// N_t of a run with restitution r: t^a1 early, t^a2 late, crossing over at tc (the paper's
+// t_c1 ~ (1 - r^2)^-phi1; Fig. 3).
+double crossover_curve(double t, double tc, double a1, double a2) {
+  return std::pow(t, a1) * std::pow(1 + t / tc, a2 - a1);
+}
+
+TEST(Crossover, RecoversTc1AndPhi1) {
+  const double phi1 = 2.25, a1 = 1.0, a2 = 2.0 / 3.0;
+  const auto t = log_grid(1e-5, 1e9, 40);
+  std::vector<double> control, tc1, tc_true;
+  for (double r : {0.3, 0.5, 0.7, 0.8, 0.9}) {
+    const double tc = 5 * std::pow(1 - r * r, -phi1);
+    std::vector<double> y;
+    for (double ti : t) y.push_back(crossover_curve(ti, tc, a1, a2));
+    const Crossover c = crossover_enter(t, y, {.target = a2, .tolerance = 0.1});
+    ASSERT_TRUE(c.found) << c.note;
+    // The slope is a2 + (a1 - a2) / (1 + t / tc): within 10% of a2 from t = 4 tc on. Tolerance
+    // 1%: the +-0.1 decade least-squares smoothing of a curved slope shifts the threshold by
+    // ~(curvature of s) h^2 / 3 ~ 4e-4 in s, i.e. ~0.5% in t at the slope's rate of change there.
+    EXPECT_NEAR(c.time / tc, 4.0, 0.04);
+    control.push_back(1 - r * r);
+    tc1.push_back(c.time);
+    tc_true.push_back(tc);
+
+    // Intersection of early and late fits, each three decades away from the crossover where the
+    // neglected correction to ln y is at most (a1 - a2) 1e-3 = 3e-4: it tilts each fit by ~1e-4,
+    // which extrapolated over ln(1e3.5) = 8 moves ln y by ~1e-3 and the crossing by ~3e-3 at
+    // most; tolerance 1%.
+    const PowerLawFit early = fit_power_law(t, y, {tc * 1e-4, tc * 1e-3});
+    const PowerLawFit late = fit_power_law(t, y, {tc * 1e3, tc * 1e4});
+    EXPECT_NEAR(crossover_intersection(early, late) / tc, 1.0, 0.01);
+  }
+  const CrossoverExponent e = fit_crossover_exponent(control, tc1);
+  // The smoothing bias above is the same for every r (the curves differ only by a shift in
+  // ln t); what varies with r is where tc falls between grid samples, a linear interpolation
+  // error of ~1e-3 relative at most. Over a factor 5 in 1 - r^2 (ln 5 = 1.6) that moves phi by
+  // < 1e-3; tolerance 2e-3.
+  EXPECT_NEAR(e.phi, phi1, 2e-3);
+  EXPECT_NEAR(fit_crossover_exponent(control, tc_true).phi, phi1, 1e-12);  // exact power law
+}
+
+TEST(Crossover, RecoversTc2AgainstCutoff) {
+  // Inelastic N_t ~ t^(2/3) until v_t ~ delta, then the elastic t^1 (2D): t_c2 ~ delta^-3/2.
+  const double phi2 = 1.5, a = 2.0 / 3.0;
+  const auto t = log_grid(1, 1e10, 40);
+  std::vector<double> control, tc2;
+  for (double delta : {1e-3, 3e-4, 1e-4, 3e-5}) {
+    const double tc = std::pow(delta, -phi2);
+    std::vector<double> y;
+    for (double ti : t) y.push_back(crossover_curve(ti, tc, a, 1.0));
+    const Crossover c = crossover_leave(t, y, {.target = a, .tolerance = 0.1});
+    ASSERT_TRUE(c.found) << c.note;
+    // The slope leaves a +- 0.0667 band when (1/3) x / (1 + x) = 0.0667, x = 0.25; 1% as above.
+    EXPECT_NEAR(c.time / tc, 0.25, 0.0025);
+    control.push_back(delta);
+    tc2.push_back(c.time);
+  }
+  EXPECT_NEAR(fit_crossover_exponent(control, tc2).phi, phi2, 2e-3);  // as for phi1
+  // Data that end before the crossover do not invent one.
+  std::vector<double> y;
+  for (double ti : t) y.push_back(crossover_curve(ti, 1e12, a, 1.0));
+  EXPECT_FALSE(crossover_leave(t, y, {.target = a}).found);
+  EXPECT_FALSE(crossover_enter(t, y, {.target = 1.0}).found);
+}
+
+// P(R,t) = t^-alpha f(R t^-alpha) tabulated as a histogram at time t.
+Histogram radial_at(double time, double alpha, int bins) {
+  const double s = std::pow(time, alpha);
+  Histogram h;
+  for (int i = 0; i <= bins; ++i) h.edges.push_back(3.0 * s * i / bins);
+  for (int i = 0; i < bins; ++i) {
+    const double x = h.centre(std::size_t(i)) / s;
+    h.values.push_back(2 * x * std::exp(-x * x) / s);  // f(x) = 2 x exp(-x^2), integral 1
+  }
+  return h;
+}
+
+TEST(Collapse, QualitySeparatesRightFromWrongExponent) {
+  const double alpha = 1.0 / 3.0;
+  auto quality = [&](double trial) {
+    std::vector<Curve> c;
+    for (double time : {25000.0, 37500.0, 50000.0})
+      c.push_back(curve_of(scaled_radial_distribution(radial_at(time, alpha, 60), time, trial)));
+    return collapse_quality(c);
+  };
+  const double right = quality(alpha), wrong = quality(alpha + 0.1), unscaled = quality(0.0);
+  // Right exponent: the curves are the same f sampled at shifted points; linear interpolation of
+  // f with spacing 0.05 errs by ~h^2 f'' / 8 ~ 3e-4 relative, so Q ~ 1e-7; 1e-5 leaves room.
+  EXPECT_LT(right, 1e-5);
+  // alpha off by 0.1 shifts the curves by factors up to 2^0.1 = 1.07 in x: relative differences
+  // ~7% of f, Q ~ 5e-3 or more.
+  EXPECT_GT(wrong, 1e-3);
+  EXPECT_GT(unscaled, wrong);
+}
+
+TEST(Collapse, QualityOfSampledHistograms) {
+  // Speeds v = t^(alpha - 1) xi with xi exponential (the paper's exponential tail of f2),
+  // 20000 samples per time, 40 bins: the sampling noise sets the floor of Q.
+  const double alpha = 1.0 / 3.0;
+  Rng rng(8, 0, Stream::Velocities);
+  auto quality = [&](double trial) {
+    Rng r = rng;
+    std::vector<Curve> c;
+    for (double time : {25000.0, 37500.0, 50000.0}) {
+      std::vector<double> v(20000);
+      for (auto& x : v) x = std::pow(time, alpha - 1) * -std::log(1 - r.uniform());
+      const Histogram h = make_histogram(v, {.bins = 40, .lo = 0, .hi = 4 * std::pow(time, alpha - 1)});
+      c.push_back(curve_of(scaled_speed_distribution(h, time, trial)));
+    }
+    return collapse_quality(c);
+  };
+  const double right = quality(alpha), unscaled = quality(1.0);
+  // Noise floor: a bin of scaled width 0.1 holding density y has Poisson variance y / (20000 *
+  // 0.1); averaged over [0, 4] (mean y = 0.245) that is 1.2e-4, of which the spread between three
+  // curves sees 2/3, against a signal variance of exp(-x) on [0, 4] of 0.065: Q ~ 1.2e-3.
+  // Unscaled, the curves are shifted by up to 2^(2/3) = 1.6 in v: a difference of order the
+  // signal itself near v = 0, where the curves differ most.
+  EXPECT_LT(right, 5e-3);  // four times the estimate 1.2e-3 below
+  EXPECT_GT(unscaled, 1.2e-2);  // ten times that estimate: clearly more than noise
+}
+
+}  // namespace
+}  // namespace gs
