@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", GRAINSHOCK_VERSION);
   app.require_subcommand(1);
   gs::app::add_run_command(app);
+  gs::app::add_render_command(app);
+  gs::app::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,80 @@
+#include "render/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace gs::render {
+
+bool Camera::visible(const Eigen::Vector3d& p, double r) const {
+  const Eigen::Vector3d d = p - origin;
+  if (!perspective) return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
+  if (slab > 0 && std::abs(d.dot(forward)) > slab / 2) return false;
+  const Eigen::Vector4d e = view * Eigen::Vector4d(d.x(), d.y(), d.z(), 1);
+  const double depth = -e.z();
+  if (depth - r > far || depth + r < near || e.head<3>().norm() <= r) return false;
+  // Inward normals of the four side planes through the eye: (-+1, 0, -t) / sqrt(1 + t^2).
+  const double nx = 1 / std::sqrt(1 + tan_half_x * tan_half_x);
+  const double ny = 1 / std::sqrt(1 + tan_half_y * tan_half_y);
+  if ((-std::abs(e.x()) + depth * tan_half_x) * nx < -r) return false;
+  if ((-std::abs(e.y()) + depth * tan_half_y) * ny < -r) return false;
+  return true;
+}
+
+Camera make_camera_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& v) {
+  Camera c;
+  c.width = v.width, c.height = v.height;
+  const double aspect = double(v.width) / v.height;
+  const Eigen::Vector3d size = fit.isEmpty() ? Eigen::Vector3d(1, 1, 0) : fit.sizes().eval();
+  const double pad = v.margin * std::max(size.x(), size.y()) + r_max;
+  c.half_w = std::max(size.x() / 2 + pad, (size.y() / 2 + pad) * aspect) / v.zoom;
+  c.half_w = std::max(c.half_w, 1e-6);
+  c.half_h = c.half_w / aspect;
+  c.origin = v.centre ? *v.centre : fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
+  c.origin.z() = 0;
+  return c;
+}
+
+Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& v) {
+  Camera c;
+  c.perspective = true;
+  c.width = v.width, c.height = v.height;
+  c.slab = v.slab;
+  const double aspect = double(v.width) / v.height;
+  const double deg = std::numbers::pi / 180;
+  c.tan_half_y = std::tan(v.fov * deg / 2);
+  c.tan_half_x = c.tan_half_y * aspect;
+  c.origin = v.centre ? *v.centre : fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
+  const double radius = (fit.isEmpty() ? 1.0 : (fit.sizes() / 2).norm()) + r_max;
+  const double half = std::atan(std::min(c.tan_half_x, c.tan_half_y));
+  double dist = v.distance > 0 ? v.distance : radius * (1 + v.margin) / std::sin(half) / v.zoom;
+  const double az = v.azimuth * deg, el = v.elevation * deg;
+  // World z is up; azimuth turns about it, elevation lifts the eye above the xy plane.
+  const Eigen::Vector3d eye =
+      dist * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+  c.forward = -eye.normalized();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  if (std::abs(c.forward.dot(up)) > 0.999) up = Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d right = c.forward.cross(up).normalized();
+  const Eigen::Vector3d cam_up = right.cross(c.forward);
+  c.view.setIdentity();
+  c.view.block<1, 3>(0, 0) = right.transpose();
+  c.view.block<1, 3>(1, 0) = cam_up.transpose();
+  c.view.block<1, 3>(2, 0) = -c.forward.transpose();
+  c.view.block<3, 1>(0, 3) = -(c.view.block<3, 3>(0, 0) * eye);
+  const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + r_max) : radius;
+  c.near = std::max(dist - reach - 1, dist * 1e-3);
+  c.far = dist + radius + 1;
+  c.proj.setZero();
+  c.proj(0, 0) = 1 / c.tan_half_x;
+  c.proj(1, 1) = 1 / c.tan_half_y;
+  c.proj(2, 2) = -(c.far + c.near) / (c.far - c.near);
+  c.proj(2, 3) = -2 * c.far * c.near / (c.far - c.near);
+  c.proj(3, 2) = -1;
+  // Pixels per world unit at the target's distance, for scale bars.
+  c.half_w = dist * c.tan_half_x;
+  c.half_h = dist * c.tan_half_y;
+  return c;
+}
+
+}  // namespace gs::render

@@ -1,0 +1,34 @@
+#pragma once
+// Where the picture looks. 2D: an orthographic window; 3D: a perspective orbit camera around a
+// target. Positions are made relative to `origin` in double before they become floats, so
+// unwrapped coordinates far from 0 keep their precision on the GPU.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "render/view.h"
+
+namespace gs::render {
+
+struct Camera {
+  bool perspective = false;
+  int width = 0, height = 0;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // picture centre (2D) or orbit target (3D)
+  // 2D: half the visible width and height in world units.
+  double half_w = 1, half_h = 1;
+  // 3D: view matrix (world minus origin -> eye space, eye looking down -z) and projection.
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity(), proj = Eigen::Matrix4d::Identity();
+  Eigen::Vector3d forward = -Eigen::Vector3d::UnitZ();  // unit line of sight
+  double near = 0.1, far = 100;
+  double tan_half_x = 1, tan_half_y = 1;
+  double slab = 0;
+
+  double pixels_per_unit() const { return width / (2 * half_w); }
+  // False if a disc or sphere of radius r at world point p cannot show in the picture.
+  bool visible(const Eigen::Vector3d& p, double r) const;
+};
+
+// `fit` is the box to frame (fitted particles or the periodic box), r_max the largest radius.
+Camera make_camera_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& v);
+Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& v);
+
+}  // namespace gs::render

@@ -1,0 +1,52 @@
+#pragma once
+// Annotations drawn over the rendered scene on the CPU: colour bar, time label, legend of the
+// multi-time overlay, scale bar. Sizes follow the picture's smaller side so a thumbnail and a
+// 4K frame look alike.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/colormap.h"
+#include "render/image.h"
+#include "render/style.h"
+#include "render/text.h"
+
+namespace gs::render {
+
+// Tick values for a colour bar over [lo, hi]: "nice" steps on a linear scale, decades (with 2
+// and 5 when the range is short) on a log scale.
+std::vector<double> colorbar_ticks(double lo, double hi, Scale scale);
+// Shortest of %.3g-style text for a tick value.
+std::string tick_text(double v);
+
+struct OverlayColours {
+  Rgb8 text;   // text and frames
+  Rgb8 panel;  // translucent backing that keeps text legible over particles
+};
+
+// Where the colour bar was drawn, for tests: the gradient's pixel rectangle.
+struct BarRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // inclusive-exclusive, y0 at the top (high end)
+};
+
+class OverlayPainter {
+ public:
+  explicit OverlayPainter(const std::string& font_path) : font_(font_path) {}
+
+  BarRect colorbar(Image& img, const Colormap& cmap, std::pair<double, double> range,
+                   Scale scale, const std::string& label, const OverlayColours& c);
+  void top_left_label(Image& img, const std::string& text, const OverlayColours& c);
+  void legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
+              const OverlayColours& c);
+  // A bar of a round length in particle diameters, bottom left.
+  void scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c);
+
+ private:
+  int unit(const Image& img);  // sets and returns the font's pixel size
+  Font font_;
+};
+
+// Alpha-blends a solid rectangle (clipped to the image).
+void fill_rect(Image& img, int x0, int y0, int x1, int y1, Rgb8 colour, float alpha = 1);
+
+}  // namespace gs::render

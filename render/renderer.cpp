@@ -1,0 +1,472 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+
+#include "render/colormap.h"
+#include "render/field.h"
+#include "render/gl_api.h"
+#include "sim/error.h"
+
+namespace gs::render {
+namespace {
+
+constexpr int kHardSizeLimit = 16384;
+
+// Per-particle data on the GPU: centre relative to the camera origin, radius, colour.
+struct Instance {
+  float x, y, z, r;
+  std::uint8_t rgba[4];
+};
+static_assert(sizeof(Instance) == 20);
+
+const char* kDiscVS = R"(#version 330 core
+layout(location = 0) in vec4 inst;
+layout(location = 1) in vec4 colour;
+uniform vec2 scale;  // world units -> clip space
+uniform float ppu;   // pixels per world unit
+out vec2 local;      // pixels from the disc's centre
+out float rad_px;
+out vec4 col;
+void main() {
+  vec2 corner = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
+  rad_px = inst.w * ppu;
+  float ext = rad_px + 1.0;  // room for the antialiased rim
+  local = corner * ext;
+  gl_Position = vec4((inst.xy + corner * (ext / ppu)) * scale, 0.0, 1.0);
+  col = colour;
+}
+)";
+
+// Coverage from the distance to the rim, one pixel wide: antialiasing without multisampling.
+const char* kDiscFS = R"(#version 330 core
+in vec2 local;
+in float rad_px;
+in vec4 col;
+out vec4 frag;
+void main() {
+  float a = clamp(rad_px + 0.5 - length(local), 0.0, 1.0);
+  if (a <= 0.0) discard;
+  frag = vec4(col.rgb, col.a * a);
+}
+)";
+
+// A billboard facing the eye, large enough to hold the sphere's perspective silhouette; the
+// fragment shader ray-casts the sphere and writes its true depth.
+const char* kSphereVS = R"(#version 330 core
+layout(location = 0) in vec4 inst;
+layout(location = 1) in vec4 colour;
+uniform mat4 view;
+uniform mat4 proj;
+uniform float px_per_depth;  // size of a pixel at unit distance
+out vec3 vpos;
+flat out vec3 centre;
+flat out float radius;
+flat out vec4 col;
+void main() {
+  vec2 corner = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
+  vec3 c = (view * vec4(inst.xyz, 1.0)).xyz;
+  float r = inst.w;
+  float d2 = dot(c, c);
+  float s = r * sqrt(d2 / max(d2 - r * r, 1e-4 * d2)) + 2.0 * sqrt(d2) * px_per_depth;
+  vec3 w = normalize(c);
+  vec3 up = abs(w.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+  vec3 u = normalize(cross(up, w));
+  vec3 v = cross(w, u);
+  vpos = c + (corner.x * u + corner.y * v) * s;
+  gl_Position = proj * vec4(vpos, 1.0);
+  centre = c;
+  radius = r;
+  col = colour;
+}
+)";
+
+const char* kSphereFS = R"(#version 330 core
+in vec3 vpos;
+flat in vec3 centre;
+flat in float radius;
+flat in vec4 col;
+uniform mat4 proj;
+uniform vec3 light;  // unit, eye space
+uniform float px_per_depth;
+out vec4 frag;
+void main() {
+  vec3 dir = normalize(vpos);
+  float b = dot(dir, centre);
+  vec3 q = centre - b * dir;  // from the ray's closest point to the centre: stable in float
+  float miss = length(q);
+  float cover = clamp((radius - miss) / (b * px_per_depth) + 0.5, 0.0, 1.0);
+  if (cover <= 0.0 || b <= 0.0) discard;
+  float t = b - sqrt(max(radius * radius - miss * miss, 0.0));
+  vec3 p = dir * t;
+  vec3 n = (p - centre) / radius;
+  float diffuse = max(dot(n, light), 0.0);
+  float spec = pow(max(dot(n, normalize(light - dir)), 0.0), 40.0);
+  frag = vec4(col.rgb * (0.3 + 0.7 * diffuse) + vec3(0.25 * spec), cover);
+  vec4 clip = proj * vec4(p, 1.0);
+  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
+}
+)";
+
+struct Palette {
+  Rgb8 background, text, inactive;
+};
+
+Palette palette(Background b) {
+  if (b == Background::Dark) return {{14, 14, 18}, {235, 235, 235}, {72, 72, 78}};
+  return {{255, 255, 255}, {20, 20, 20}, {206, 206, 206}};
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+Rgb8 overlay_colour(std::size_t index) {
+  static const Rgb8 k[] = {{0, 114, 178},  {230, 159, 0},   {0, 158, 115}, {204, 121, 167},
+                           {213, 94, 0},   {86, 180, 233},  {240, 228, 66}};
+  return k[index % std::size(k)];
+}
+
+void check_size(int width, int height, int limit) {
+  if (width <= 0 || height <= 0 || width > limit || height > limit)
+    throw UserError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                    " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
+}
+
+void check_style(const Style& style) {
+  Colormap::by_name(style.colormap);
+  if (style.range) {
+    const auto [lo, hi] = *style.range;
+    if (!std::isfinite(lo) || !std::isfinite(hi) || lo >= hi)
+      throw UserError("colour range MIN " + fmt("%g", lo) + " must be below MAX " + fmt("%g", hi));
+    if (style.scale == Scale::Log && lo <= 0)
+      throw UserError("a logarithmic colour range needs MIN > 0 (got " + fmt("%g", lo) + ")");
+  }
+  if (style.scale == Scale::Log && style.field == Field::RadialVelocity)
+    throw UserError("radial velocity takes both signs; it cannot be coloured on a log scale");
+  if (!(style.percentile_low >= 0 && style.percentile_low < style.percentile_high &&
+        style.percentile_high <= 100))
+    throw UserError("colour percentiles must satisfy 0 <= low < high <= 100");
+}
+
+struct Renderer::Impl {
+  std::unique_ptr<GLContext> ctx;
+  GLApi gl;
+  GLuint disc_prog = 0, sphere_prog = 0, vao = 0, vbo = 0;
+  std::size_t vbo_bytes = 0;
+  GLuint fbo = 0, colour_rb = 0, depth_rb = 0;  // drawn into (multisampled or not)
+  GLuint resolve_fbo = 0, resolve_rb = 0;       // single-sample copy when multisampled
+  int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
+  int max_size = 0, max_samples = 0;
+  std::vector<Instance> instances;
+  std::vector<std::uint8_t> readback;
+  std::optional<OverlayPainter> painter;
+  std::string painter_font;
+  RenderInfo info;
+
+  GLuint compile(GLenum type, const char* src) {
+    const GLuint s = gl.CreateShader(type);
+    gl.ShaderSource(s, 1, &src, nullptr);
+    gl.CompileShader(s);
+    GLint ok = 0;
+    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
+      GS_CHECK_MSG(false, std::string("shader does not compile: ") + log);
+    }
+    return s;
+  }
+  GLuint link(const char* vs, const char* fs) {
+    const GLuint p = gl.CreateProgram();
+    const GLuint v = compile(GL_VERTEX_SHADER, vs), f = compile(GL_FRAGMENT_SHADER, fs);
+    gl.AttachShader(p, v);
+    gl.AttachShader(p, f);
+    gl.LinkProgram(p);
+    GLint ok = 0;
+    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
+      GS_CHECK_MSG(false, std::string("shaders do not link: ") + log);
+    }
+    gl.DeleteShader(v);
+    gl.DeleteShader(f);
+    return p;
+  }
+
+  void init(Backend backend) {
+    ctx = GLContext::create(backend);
+    gl.load(*ctx);
+    GLint v = 0;
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &v);
+    GLint dims[2] = {0, 0};
+    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    max_size = std::min({kHardSizeLimit, static_cast<int>(v), static_cast<int>(dims[0]),
+                         static_cast<int>(dims[1])});
+    gl.GetIntegerv(GL_MAX_SAMPLES, &v);
+    max_samples = v;
+    disc_prog = link(kDiscVS, kDiscFS);
+    sphere_prog = link(kSphereVS, kSphereFS);
+    gl.GenVertexArrays(1, &vao);
+    gl.GenBuffers(1, &vbo);
+    gl.BindVertexArray(vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
+    gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), nullptr);
+    gl.VertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance),
+                           reinterpret_cast<const void*>(offsetof(Instance, rgba)));
+    gl.EnableVertexAttribArray(0);
+    gl.EnableVertexAttribArray(1);
+    gl.VertexAttribDivisor(0, 1);
+    gl.VertexAttribDivisor(1, 1);
+    GS_CHECK(gl.GetError() == GL_NO_ERROR);
+  }
+
+  void free_targets() {
+    if (fbo) gl.DeleteFramebuffers(1, &fbo), fbo = 0;
+    if (resolve_fbo) gl.DeleteFramebuffers(1, &resolve_fbo), resolve_fbo = 0;
+    GLuint rbs[] = {colour_rb, depth_rb, resolve_rb};
+    for (GLuint rb : rbs)
+      if (rb) gl.DeleteRenderbuffers(1, &rb);
+    colour_rb = depth_rb = resolve_rb = 0;
+  }
+
+  GLuint renderbuffer(GLenum format, int w, int h, int samples) {
+    GLuint rb = 0;
+    gl.GenRenderbuffers(1, &rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, rb);
+    if (samples > 0) gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, w, h);
+    else gl.RenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+    return rb;
+  }
+
+  void ensure_targets(int w, int h, int samples) {
+    if (w == fbo_w && h == fbo_h && samples == fbo_samples) return;
+    free_targets();
+    gl.GenFramebuffers(1, &fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    colour_rb = renderbuffer(GL_RGBA8, w, h, samples);
+    depth_rb = renderbuffer(GL_DEPTH_COMPONENT24, w, h, samples);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_rb);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw UserError("the OpenGL driver cannot make a " + std::to_string(w) + "x" +
+                      std::to_string(h) + " framebuffer (out of memory?)");
+    if (samples > 0) {
+      gl.GenFramebuffers(1, &resolve_fbo);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
+      resolve_rb = renderbuffer(GL_RGBA8, w, h, 0);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_rb);
+      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw UserError("the OpenGL driver cannot make a resolve framebuffer");
+    }
+    fbo_w = w, fbo_h = h, fbo_samples = samples;
+  }
+
+  void upload() {
+    const std::size_t bytes = instances.size() * sizeof(Instance);
+    gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
+    // Orphan and refill: the driver need not wait for the previous frame's draw.
+    if (bytes > vbo_bytes) vbo_bytes = std::max(bytes, vbo_bytes * 3 / 2);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vbo_bytes), nullptr, GL_STREAM_DRAW);
+    if (bytes) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances.data());
+  }
+};
+
+Renderer::Renderer(Backend backend) : impl_(std::make_unique<Impl>()) { impl_->init(backend); }
+
+Renderer::~Renderer() {
+  if (!impl_ || !impl_->ctx) return;
+  auto& gl = impl_->gl;
+  impl_->ctx->make_current();
+  impl_->free_targets();
+  gl.DeleteBuffers(1, &impl_->vbo);
+  gl.DeleteVertexArrays(1, &impl_->vao);
+  gl.DeleteProgram(impl_->disc_prog);
+  gl.DeleteProgram(impl_->sphere_prog);
+}
+
+const RenderInfo& Renderer::last() const { return impl_->info; }
+int Renderer::max_size() const { return impl_->max_size; }
+const char* Renderer::backend_name() const { return impl_->ctx->backend_name(); }
+
+Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& style,
+                       const View& view) {
+  Impl& m = *impl_;
+  GLApi& gl = m.gl;
+  check_size(view.width, view.height, m.max_size);
+  check_style(style);
+  GS_CHECK(!snaps.empty());
+  const Colormap cmap = Colormap::by_name(style.colormap);
+  const int dim = snaps.front()->info.dim;
+  for (const Snapshot* s : snaps)
+    if (s->info.dim != dim) throw UserError("snapshots of different dimensions cannot share a picture");
+  const bool three_d = dim == 3;
+  const bool overlay = snaps.size() > 1;
+  const Palette pal = palette(style.background);
+  m.info = RenderInfo{};
+
+  // Colours need the field only for a single snapshot; the overlay colours by time.
+  std::vector<double> values;
+  if (!overlay) {
+    const Snapshot& s = *snaps.front();
+    values = field_values(s, style.field);
+    std::vector<std::uint8_t> mask = s.active;
+    if (std::find(mask.begin(), mask.end(), 1) == mask.end()) mask.assign(s.size(), 1);
+    m.info.range = style.range ? *style.range
+                               : auto_range(values, mask, style.scale, style.percentile_low,
+                                            style.percentile_high);
+  }
+
+  // Framing: the active particles of all snapshots, or the box.
+  Eigen::AlignedBox3d fit;
+  double r_max = 0;
+  double box = 0;
+  for (const Snapshot* s : snaps) box = std::max(box, s->info.box);
+  const bool wrap = view.framing == Framing::Box && box > 0;
+  auto wrapped = [&](Eigen::Vector3d p) {
+    if (wrap)
+      for (int k = 0; k < std::min(dim, 3); ++k) p[k] -= box * std::floor(p[k] / box);
+    return p;
+  };
+  if (wrap) {
+    fit.extend(Eigen::Vector3d::Zero());
+    fit.extend(Eigen::Vector3d(box, dim >= 2 ? box : 0, dim == 3 ? box : 0));
+  }
+  for (int pass = 0; pass < 2 && fit.isEmpty(); ++pass)
+    for (const Snapshot* s : snaps)
+      for (std::size_t i = 0; i < s->size(); ++i)
+        if (pass == 1 || s->active[i]) fit.extend(wrapped(s->position[i]));
+  for (const Snapshot* s : snaps)
+    for (double r : s->radius) r_max = std::max(r_max, r);
+  const Camera cam = three_d ? make_camera_3d(fit, r_max, view) : make_camera_2d(fit, r_max, view);
+  m.info.camera = cam;
+
+  // Instances: inactive (if shown) first so the 2D discs of active ones lie on top.
+  m.instances.clear();
+  auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c) {
+    if (!cam.visible(p, r)) return;
+    const Eigen::Vector3d d = p - cam.origin;
+    m.instances.push_back({static_cast<float>(d.x()), static_cast<float>(d.y()),
+                           static_cast<float>(three_d ? d.z() : 0.0), static_cast<float>(r),
+                           {c[0], c[1], c[2], 255}});
+  };
+  if (style.show_inactive) {
+    const Snapshot& s = *snaps.back();
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (!s.active[i]) push(wrapped(s.position[i]), s.radius[i], pal.inactive);
+  }
+  for (std::size_t k = 0; k < snaps.size(); ++k) {
+    const Snapshot& s = *snaps[k];
+    const Rgb8 time_colour = overlay_colour(k);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!s.active[i]) continue;
+      Rgb8 c = time_colour;
+      if (!overlay)
+        c = std::isnan(values[i]) ? pal.inactive
+                                  : cmap.at8(normalise(values[i], m.info.range, style.scale));
+      push(wrapped(s.position[i]), s.radius[i], c);
+    }
+  }
+  m.info.drawn = m.instances.size();
+
+  const int samples = three_d ? std::min(std::max(style.msaa, 0), m.max_samples) : 0;
+  m.ctx->make_current();
+  m.ensure_targets(view.width, view.height, samples);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+  gl.Viewport(0, 0, view.width, view.height);
+  gl.ClearColor(pal.background[0] / 255.f, pal.background[1] / 255.f, pal.background[2] / 255.f, 1);
+  gl.ClearDepth(1.0);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  m.upload();
+  gl.BindVertexArray(m.vao);
+  if (!three_d) {
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Enable(GL_BLEND);
+    gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    gl.UseProgram(m.disc_prog);
+    gl.Uniform1f(gl.GetUniformLocation(m.disc_prog, "ppu"),
+                 static_cast<float>(cam.pixels_per_unit()));
+    const GLint loc = gl.GetUniformLocation(m.disc_prog, "scale");
+    gl.Uniform2f(loc, static_cast<float>(1 / cam.half_w), static_cast<float>(1 / cam.half_h));
+  } else {
+    gl.Disable(GL_BLEND);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    if (samples > 0) gl.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    else gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    gl.UseProgram(m.sphere_prog);
+    const Eigen::Matrix4f view_f = cam.view.cast<float>(), proj_f = cam.proj.cast<float>();
+    gl.UniformMatrix4fv(gl.GetUniformLocation(m.sphere_prog, "view"), 1, GL_FALSE, view_f.data());
+    gl.UniformMatrix4fv(gl.GetUniformLocation(m.sphere_prog, "proj"), 1, GL_FALSE, proj_f.data());
+    gl.Uniform1f(gl.GetUniformLocation(m.sphere_prog, "px_per_depth"),
+                 static_cast<float>(2 * cam.tan_half_y / view.height));
+    const Eigen::Vector3f light = Eigen::Vector3f(-0.4f, 0.55f, 0.75f).normalized();
+    gl.Uniform3f(gl.GetUniformLocation(m.sphere_prog, "light"), light.x(), light.y(), light.z());
+  }
+  if (!m.instances.empty())
+    gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(m.instances.size()));
+  if (samples > 0) {
+    gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m.resolve_fbo);
+    gl.BlitFramebuffer(0, 0, view.width, view.height, 0, 0, view.width, view.height,
+                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.resolve_fbo);
+  }
+  Image img(view.width, view.height);
+  m.readback.resize(img.rgba.size());
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, view.width, view.height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());
+  if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
+    throw UserError("OpenGL error " + std::to_string(e) + " while rendering " +
+                    std::to_string(view.width) + "x" + std::to_string(view.height));
+  const std::size_t row = static_cast<std::size_t>(view.width) * 4;
+  for (int y = 0; y < view.height; ++y)  // GL's rows run bottom-up
+    std::memcpy(img.pixel(0, y), m.readback.data() + (view.height - 1 - y) * row, row);
+
+  // Overlays, on the CPU: text and the colour bar come out identical on every driver.
+  const bool any_overlay = (style.colorbar && !overlay) || style.time_label ||
+                           (style.legend && overlay) || (style.scale_bar && !three_d);
+  if (!any_overlay) return img;
+  if (!m.painter || m.painter_font != style.font) {
+    m.painter.reset();
+    m.painter.emplace(style.font);
+    m.painter_font = style.font;
+  }
+  const OverlayColours oc{pal.text, pal.background};
+  auto time_text = [](const SnapshotInfo& in) {
+    std::string t = "t = " + fmt("%.5g", in.time);
+    if (in.density)
+      t += "   t_paper = " +
+           fmt("%.5g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
+    return t;
+  };
+  if (overlay) {
+    if (style.legend) {
+      std::vector<std::pair<Rgb8, std::string>> entries;
+      for (std::size_t k = 0; k < snaps.size(); ++k)
+        entries.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
+      m.painter->legend(img, entries, oc);
+    }
+  } else {
+    if (style.colorbar) {
+      std::string label = field_label(style.field);
+      if (style.scale == Scale::Log) label += " (log)";
+      m.info.colorbar = m.painter->colorbar(img, cmap, m.info.range, style.scale, label, oc);
+    }
+    if (style.time_label) m.painter->top_left_label(img, time_text(snaps.front()->info), oc);
+  }
+  if (style.scale_bar && !three_d) m.painter->scale_bar(img, cam.pixels_per_unit(), oc);
+  return img;
+}
+
+}  // namespace gs::render

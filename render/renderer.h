@@ -1,0 +1,60 @@
+#pragma once
+// Snapshots in, RGBA image out. One Renderer owns one GL context and reuses its programs,
+// buffers and framebuffers across calls, so a movie pays the set-up once.
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+#include "render/overlay.h"
+#include "render/style.h"
+#include "render/view.h"
+#include "sim/snapshot.h"
+
+namespace gs::render {
+
+// What the last render() decided, for callers that want to hold it fixed across frames (a
+// movie's colour range) and for tests that look for things in the picture.
+struct RenderInfo {
+  std::pair<double, double> range{0, 1};  // colour range actually used (single snapshot)
+  std::size_t drawn = 0;                  // particles that survived culling
+  Camera camera;
+  BarRect colorbar;  // empty if none was drawn
+};
+
+class Renderer {
+ public:
+  // UserError if no GL context can be had.
+  explicit Renderer(Backend backend = Backend::Auto);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // One snapshot: coloured by style.field. Several: the Fig. 1(a) overlay, each snapshot in its
+  // own colour with a legend of times. All must share the dimension. UserError for sizes out
+  // of range, an unknown colormap, MIN >= MAX, or a field the snapshot lacks.
+  Image render(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view);
+  Image render(const Snapshot& s, const Style& style, const View& view) {
+    return render(std::vector<const Snapshot*>{&s}, style, view);
+  }
+
+  const RenderInfo& last() const;
+  // Largest width or height this context can render (and at most 16384).
+  int max_size() const;
+  const char* backend_name() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The colour of each snapshot in the multi-time overlay (Okabe-Ito, safe for colour blindness).
+Rgb8 overlay_colour(std::size_t index);
+// Throws UserError unless 0 < width, height <= limit.
+void check_size(int width, int height, int limit);
+// Throws UserError unless the style's words and range make sense.
+void check_style(const Style& style);
+
+}  // namespace gs::render

@@ -1,0 +1,26 @@
+#pragma once
+// The picture's size and camera. 2D: fitted to the active particles, the whole box, or an
+// explicit centre and zoom. 3D: a perspective orbit camera with an optional slab cut.
+#include <Eigen/Core>
+#include <optional>
+
+namespace gs::render {
+
+enum class Framing { Fit, Box };
+
+struct View {
+  int width = 1920, height = 1080;
+  Framing framing = Framing::Fit;
+  double margin = 0.08;  // fraction of the fitted extent left free on each side
+  // Explicit framing: the world point at the picture's centre, and a magnification relative to
+  // the fitted (or box) framing.
+  std::optional<Eigen::Vector3d> centre;
+  double zoom = 1;
+  // 3D camera, angles in degrees; distance 0 means fitted.
+  double azimuth = 30, elevation = 20, distance = 0, fov = 30;
+  // 3D: keep only particles whose centres lie within slab/2 of the plane through the centre
+  // facing the camera (0: no cut), exposing the shell's cross-section.
+  double slab = 0;
+};
+
+}  // namespace gs::render
