@@ -180,4 +180,54 @@ Histogram HistogramAverage::mean() const {
   return h;
 }
 
+void ProfileAverage::add(const RadialProfile& p, const std::string& source) {
+  GS_CHECK(p.speed_sum.size() == p.count.size() && p.radial_velocity_sum.size() == p.count.size());
+  if (count() == 0 && edges_.empty()) {
+    edges_ = p.edges;
+    density_ = MeanAccumulator(p.density.size());
+    speed_.assign(p.count.size(), ExactSum());
+    radial_.assign(p.count.size(), ExactSum());
+    count_.assign(p.count.size(), 0);
+  } else if (p.edges != edges_) {
+    throw UserError(source + ": profile shells differ from the first realisation's (give a fixed "
+                             "binning for ensembles)");
+  }
+  density_.add(p.density);
+  for (std::size_t b = 0; b < count_.size(); ++b) {
+    speed_[b].add(p.speed_sum[b]);
+    radial_[b].add(p.radial_velocity_sum[b]);
+    count_[b] += p.count[b];
+  }
+}
+
+void ProfileAverage::merge(const ProfileAverage& other) {
+  if (other.count() == 0) return;
+  if (count() == 0) {
+    *this = other;
+    return;
+  }
+  if (other.edges_ != edges_) throw UserError("merged profiles have different shells");
+  density_.merge(other.density_);
+  for (std::size_t b = 0; b < count_.size(); ++b) {
+    speed_[b].add(other.speed_[b]);
+    radial_[b].add(other.radial_[b]);
+    count_[b] += other.count_[b];
+  }
+}
+
+RadialProfile ProfileAverage::mean() const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  RadialProfile p;
+  p.edges = edges_;
+  p.count = count_;
+  p.density = density_.mean();
+  for (std::size_t b = 0; b < count_.size(); ++b) {
+    p.speed_sum.push_back(speed_[b].value());
+    p.radial_velocity_sum.push_back(radial_[b].value());
+    p.mean_speed.push_back(count_[b] ? p.speed_sum[b] / double(count_[b]) : nan);
+    p.mean_radial_velocity.push_back(count_[b] ? p.radial_velocity_sum[b] / double(count_[b]) : nan);
+  }
+  return p;
+}
+
 }  // namespace gs

@@ -13,6 +13,7 @@
 #include "analysis/exact_sum.h"
 #include "analysis/table.h"
 #include "sim/histogram.h"
+#include "sim/observables.h"
 
 namespace gs {
 
@@ -77,6 +78,25 @@ class HistogramAverage {
   std::vector<double> edges_;
   MeanAccumulator acc_;
   std::uint64_t samples_ = 0, outside_ = 0;
+};
+
+// The average of radial profiles with identical shells. Densities are averaged per shell; mean
+// speed and mean radial velocity are ratios of summed sums to summed counts (particle-weighted),
+// so a shell empty in some realisations is still defined by the others.
+class ProfileAverage {
+ public:
+  void add(const RadialProfile& p, const std::string& source);  // UserError if the shells differ
+  void merge(const ProfileAverage& other);
+  std::uint64_t count() const { return density_.count(); }
+  // density: mean over realisations; count: total; the means as described above.
+  RadialProfile mean() const;
+  std::vector<double> density_standard_error() const { return density_.standard_error(); }
+
+ private:
+  std::vector<double> edges_;
+  MeanAccumulator density_;
+  std::vector<ExactSum> speed_, radial_;
+  std::vector<std::uint64_t> count_;
 };
 
 }  // namespace gs

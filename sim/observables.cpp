@@ -243,6 +243,8 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   p.mean_speed.resize(n);
   p.mean_radial_velocity.resize(n);
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  p.speed_sum = speed;
+  p.radial_velocity_sum = radial;
   for (std::size_t b = 0; b < n; ++b) {
     const double shell = ball_volume(d, h.edges[b + 1]) - ball_volume(d, h.edges[b]);
     p.density[b] = double(p.count[b]) / shell;

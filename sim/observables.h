@@ -88,6 +88,9 @@ struct RadialProfile {
   // particles: the kick gives the band a net drift ~ v0 / N_t, of the order of v_t itself when
   // v_t R_t^d ~ const (the paper's radial momentum argument), so the lab frame would mix it in.
   std::vector<double> mean_radial_velocity;
+  // The sums behind the two means, so that an ensemble can average sum over count (empty shells
+  // of one realisation then weigh nothing instead of making the mean NaN).
+  std::vector<double> speed_sum, radial_velocity_sum;
 };
 RadialProfile radial_profile(const Snapshot& s, const Binning& binning = {});
 

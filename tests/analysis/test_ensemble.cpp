@@ -135,5 +135,43 @@ TEST(Ensemble, HistogramAverage) {
                UserError);
 }
 
+TEST(Ensemble, ProfileAverageWeighsParticlesNotRealisations) {
+  // Realisation A: 10 particles at R ~ 1 with speed 1; realisation B: 30 at R ~ 1 with speed 3
+  // and 5 at R ~ 3 with speed 2. Shell [0, 2): particle-weighted mean speed (10 + 90) / 40 = 2.5
+  // (a mean of per-realisation means would give 2); shell [2, 4) is empty in A, 2 from B alone.
+  auto make = [](int n_in, double v_in, int n_out, double v_out) {
+    Snapshot s;
+    s.info.dim = 2;
+    auto ring = [&](int n, double R, double v) {
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3d u(std::cos(6.283185307179586 * i / n), std::sin(6.283185307179586 * i / n), 0);
+        s.position.push_back(R * u);
+        s.velocity.push_back(v * u);
+        s.active.push_back(1);
+      }
+    };
+    ring(n_in, 1, v_in);
+    if (n_out) ring(n_out, 3, v_out);
+    return radial_profile(s, {.bins = 2, .lo = 0, .hi = 4});
+  };
+  ProfileAverage a, b;
+  a.add(make(10, 1, 0, 0), "A");
+  b.add(make(30, 3, 5, 2), "B");
+  a.merge(b);
+  const RadialProfile m = a.mean();
+  // Tolerances: a handful of exact sums of symmetric rings; round-off only.
+  EXPECT_NEAR(m.mean_speed[0], 2.5, 1e-12);
+  EXPECT_NEAR(m.mean_speed[1], 2.0, 1e-12);
+  EXPECT_NEAR(m.mean_radial_velocity[1], 2.0, 1e-12);
+  EXPECT_EQ(m.count[0], 40u);
+  EXPECT_NEAR(m.density[1], 0.5 * 5 / (3.141592653589793 * 12), 1e-12);
+  // Other shells (a realisation binned on its own range) cannot be averaged in.
+  Snapshot other;
+  other.info.dim = 2;
+  other.position = {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0)};
+  other.velocity = {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0)};
+  EXPECT_THROW(a.add(radial_profile(other), "C"), UserError);
+}
+
 }  // namespace
 }  // namespace gs
