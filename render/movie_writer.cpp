@@ -33,6 +33,12 @@ void check_av(int ret, const std::filesystem::path& path, const char* what) {
     throw UserError("movie '" + path.string() + "': " + what + ": " + av_error_text(ret));
 }
 
+std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 int round_up_even(int n) { return n + (n & 1); }
 
 // Copies `src` into `dst` (even size, at least one larger), repeating the last column and row.
@@ -47,7 +53,31 @@ void pad_replicate(const Image& src, Image& dst) {
   }
 }
 
+// The encoder for a codec name: libx264 for "h264" and "libx264", with "h264" falling back to
+// MPEG-4 Part 2 when libavcodec was built without libx264. Null if unavailable or unknown.
+const AVCodec* find_encoder(const std::string& name) {
+  if (name == "h264" || name == "libx264") {
+    if (const AVCodec* c = avcodec_find_encoder_by_name("libx264")) return c;
+    return name == "h264" ? avcodec_find_encoder(AV_CODEC_ID_MPEG4) : nullptr;
+  }
+  if (name == "mpeg4") return avcodec_find_encoder(AV_CODEC_ID_MPEG4);
+  return nullptr;
+}
+
 }  // namespace
+
+void check_movie_options(const MovieOptions& o) {
+  if (o.codec != "h264" && o.codec != "libx264" && o.codec != "mpeg4")
+    throw UserError("unknown codec '" + o.codec + "' (use h264, libx264 or mpeg4)");
+  if (o.width <= 0 || o.height <= 0)
+    throw UserError("movie frame size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                    " must be positive");
+  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 1000)
+    throw UserError("movie fps must be in (0, 1000], got " + shortest(o.fps));
+  if (o.crf < 0 || o.crf > 51)
+    throw UserError("movie crf must be in 0..51, got " + std::to_string(o.crf));
+  if (o.queue_frames < 1) throw UserError("movie queue_frames must be >= 1");
+}
 
 struct MovieWriter::Av {
   AVFormatContext* format = nullptr;
@@ -75,27 +105,9 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
     : path_(path), options_(options), uncaught_at_construction_(std::uncaught_exceptions()) {
   const MovieOptions& o = options_;
   const std::string name = path_.string();
-  if (o.width <= 0 || o.height <= 0)
-    throw UserError("movie '" + name + "': frame size " + std::to_string(o.width) + "x" +
-                    std::to_string(o.height) + " must be positive");
-  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 1000)
-    throw UserError("movie '" + name + "': fps must be in (0, 1000], got " + std::to_string(o.fps));
-  if (o.crf < 0 || o.crf > 51)
-    throw UserError("movie '" + name + "': crf must be in 0..51, got " + std::to_string(o.crf));
-  if (o.queue_frames < 1)
-    throw UserError("movie '" + name + "': queue_frames must be >= 1");
-
-  const AVCodec* codec = nullptr;
-  if (o.codec == "h264" || o.codec == "libx264") {
-    codec = avcodec_find_encoder_by_name("libx264");
-    if (!codec && o.codec == "h264") codec = avcodec_find_encoder(AV_CODEC_ID_MPEG4);
-    if (!codec) throw UserError("movie '" + name + "': codec 'libx264' is not available in this libavcodec");
-  } else if (o.codec == "mpeg4") {
-    codec = avcodec_find_encoder(AV_CODEC_ID_MPEG4);
-    if (!codec) throw UserError("movie '" + name + "': codec 'mpeg4' is not available in this libavcodec");
-  } else {
-    throw UserError("unknown codec '" + o.codec + "' (use h264, libx264 or mpeg4)");
-  }
+  check_movie_options(o);
+  const AVCodec* codec = find_encoder(o.codec);
+  if (!codec) throw UserError("movie '" + name + "': codec '" + o.codec + "' is not in this libavcodec");
   encoder_name_ = codec->name;
   const bool x264 = encoder_name_ == "libx264";
 

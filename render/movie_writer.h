@@ -36,6 +36,10 @@ struct MovieOptions {
   int threads = 0;       // encoder threads, 0 = libavcodec chooses
 };
 
+// Throws UserError naming the option if `o` cannot make a movie (size, fps, crf, codec name), so
+// that a command can refuse bad flags before it creates anything. The constructor calls it too.
+void check_movie_options(const MovieOptions& o);
+
 class MovieWriter {
  public:
   // Opens the encoder and the output at once, so a bad path or codec is reported before any
