@@ -208,6 +208,21 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   if (sorted.empty()) return out;
   out.typical = weighted / double(weights);
   out.mean = sum / double(sorted.size());
+  if (!(options.upper_quantile > 0 && options.upper_quantile <= 1))
+    throw UserError("packing quantile must be in (0, 1]");
+  std::vector<std::size_t> order(out.fraction.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out.fraction[a] < out.fraction[b] || (out.fraction[a] == out.fraction[b] && a < b);
+  });
+  std::uint64_t cumulative = 0;
+  for (std::size_t i : order) {
+    cumulative += out.active[i];
+    if (double(cumulative) >= options.upper_quantile * double(weights)) {
+      out.upper = out.fraction[i];
+      break;
+    }
+  }
   const auto& v = out.distribution.values;
   out.mode = out.distribution.centre(std::size_t(std::max_element(v.begin(), v.end()) - v.begin()));
   return out;

@@ -166,6 +166,34 @@ TEST(Observables, BandPackingOfSquareLattice) {
   EXPECT_NEAR(p.mean, expected, 1e-12);
   EXPECT_NEAR(p.mode, expected, 0.5 / 50);  // the centre of the bin of width 1/50 holding it
   EXPECT_NEAR(p.distribution.integral(), 1.0, 1e-12);
+  EXPECT_NEAR(p.upper, expected, 1e-12);
+
+  // One stray active particle in a cell of the passive half: that cell becomes a band cell of
+  // 64 passive + 1 active discs, weight 1 against 50 cells of weight 64. Its passive discs count
+  // (packing of all particles), and the weighting keeps it from pulling the typical value.
+  // Expected values from the definitions; round-off only.
+  add(s, Eigen::Vector3d(75.1, 75.1, 0));
+  const BandPacking q = band_packing(s);
+  const double stray = 65 * pi / 4 / 100;
+  EXPECT_EQ(q.fraction.size(), 51u);
+  EXPECT_NEAR(q.typical, (50 * 64 * expected + stray) / (50 * 64 + 1), 1e-12);
+  EXPECT_NEAR(q.mean, (50 * expected + stray) / 51, 1e-12);
+  EXPECT_NEAR(q.upper, expected, 1e-12);
+}
+
+TEST(Observables, BandPackingWeighsCellsByTheirBandParticles) {
+  // A full cell of 64 discs and, far away, a cell with one disc: the edge-of-band situation.
+  Snapshot s = make_snapshot(2);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) add(s, Eigen::Vector3d((i + 0.5) * 1.25, (j + 0.5) * 1.25, 0));
+  add(s, Eigen::Vector3d(55, 55, 0));
+  const BandPacking p = band_packing(s);
+  const double full = 64 * pi / 400, single = pi / 400;
+  // Expected values from the definitions; round-off only.
+  EXPECT_NEAR(p.typical, (64 * full + single) / 65, 1e-12);
+  EXPECT_NEAR(p.mean, (full + single) / 2, 1e-12);
+  EXPECT_NEAR(p.upper, full, 1e-12);  // 90% of the weight lies in the full cell
+  EXPECT_THROW(band_packing(s, {.upper_quantile = 0}), UserError);
 }
 
 TEST(Observables, BandPackingOfHexagonalLattice) {
