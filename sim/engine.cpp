@@ -14,14 +14,13 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   const std::size_t n = init.position.size();
   GS_CHECK(n >= 2 && init.velocity.size() == n);
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
-  pos_ = std::move(init.position);
-  vel_ = std::move(init.velocity);
-  tloc_.assign(n, 0.0);
+  sort_by_cell(init);
+  kin_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
   cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
-  counter_.assign(n, 0);
   head_.assign(grid_.cell_count(), -1);
-  next_.assign(n, -1);
   prev_.assign(n, -1);
   coll_time_.assign(n, kNever);
   coll_partner_.assign(n, -1);
@@ -35,24 +34,63 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
 
   for (std::size_t i = 0; i < n; ++i) {
     const auto id = static_cast<std::int32_t>(i);
-    cell_[i] = grid_.coords_of(pos_[i]);
+    cell_[i] = grid_.coords_of(kin_[i].x);
     cell_insert(id, grid_.index(cell_[i]));
   }
   if (config_.sticky()) {
-    for (std::size_t i = 1; i < n; ++i) GS_CHECK(pos_[i][0] >= pos_[i - 1][0]);
+    for (std::size_t i = 1; i < n; ++i) GS_CHECK(kin_[i].x[0] >= kin_[i - 1].x[0]);
     cluster_lo_.resize(n);
     cluster_hi_.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       cluster_lo_[i] = cluster_hi_[i] = static_cast<std::int32_t>(i);
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (vel_[i].squaredNorm() > 0) mark_moving(static_cast<std::int32_t>(i));
+    if (kin_[i].v.squaredNorm() > 0) mark_moving(static_cast<std::int32_t>(i));
   for (std::int32_t i : moved_) predict(i);
+}
+
+namespace {
+
+// Interleaves the bits of the cell coordinates (Morton order): cells close in space get close
+// codes in every direction, not only along x.
+template <int D>
+std::uint64_t morton(const IVec<D>& c) {
+  std::uint64_t code = 0;
+  for (int bit = 0; bit < 63 / D; ++bit)
+    for (int k = 0; k < D; ++k)
+      code |= ((static_cast<std::uint64_t>(c[k]) >> bit) & 1u) << (bit * D + k);
+  return code;
+}
+
+}  // namespace
+
+// Stores the particles in Morton order of their cells, so that the neighbours a search visits
+// share cache lines and pages (for 1e5 spheres this halves the cost of a collision). In 1D the
+// initial order already runs along the line, and sticky clusters rely on it. tag_ remembers the
+// original numbering for snapshots.
+template <int D>
+void Engine<D>::sort_by_cell(InitialState<D>& init) {
+  const std::size_t n = init.position.size();
+  tag_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) tag_[i] = static_cast<std::int32_t>(i);
+  if constexpr (D > 1) {
+    std::vector<std::uint64_t> key(n);
+    for (std::size_t i = 0; i < n; ++i) key[i] = morton<D>(grid_.coords_of(init.position[i]));
+    std::stable_sort(tag_.begin(), tag_.end(),
+                     [&](std::int32_t a, std::int32_t b) { return key[a] < key[b]; });
+    VecArray<D> pos(n), vel(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      pos[i] = init.position[tag_[i]];
+      vel[i] = init.velocity[tag_[i]];
+    }
+    init.position = std::move(pos);
+    init.velocity = std::move(vel);
+  }
 }
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  next_[i] = head_[cell];
+  kin_[i].next = head_[cell];
   prev_[i] = -1;
   if (head_[cell] >= 0) prev_[head_[cell]] = i;
   head_[cell] = i;
@@ -60,11 +98,12 @@ void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
 
 template <int D>
 void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
+  const std::int32_t next = kin_[i].next;
   if (prev_[i] >= 0)
-    next_[prev_[i]] = next_[i];
+    kin_[prev_[i]].next = next;
   else
-    head_[cell] = next_[i];
-  if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+    head_[cell] = next;
+  if (next >= 0) prev_[next] = prev_[i];
 }
 
 template <int D>
@@ -84,33 +123,35 @@ void Engine<D>::mark_active(std::int32_t i) {
 
 template <int D>
 void Engine<D>::advance(std::int32_t i) {
-  pos_[i] += vel_[i] * (now_ - tloc_[i]);
-  tloc_[i] = now_;
+  Kinematics& k = kin_[i];
+  k.x += k.v * (now_ - k.t);
+  k.t = now_;
 }
 
 template <int D>
 Vec<D> Engine<D>::position(std::int32_t i) const {
-  Vec<D> x = pos_[i] + vel_[i] * (now_ - tloc_[i]);
+  Vec<D> x = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
   for (int k = 0; k < D; ++k) x[k] += image_[i][k] * grid_.box();
   return x;
 }
 
 // Separation from i (at xi, current time) to j, nearest periodic image.
 template <int D>
-Vec<D> Engine<D>::separation(std::int32_t, const Vec<D>& xi, std::int32_t j) const {
-  return grid_.minimum_image(pos_[j] + vel_[j] * (now_ - tloc_[j]) - xi);
+inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
+  const Kinematics& k = kin_[j];
+  return grid_.minimum_image(k.x + k.v * (now_ - k.t) - xi);
 }
 
 template <int D>
 void Engine<D>::scan_cell(std::int32_t i, const Vec<D>& xi, std::int32_t cell) {
-  const Vec<D>& vi = vel_[i];
-  for (std::int32_t j = head_[cell]; j >= 0; j = next_[j]) {
+  const Vec<D> vi = kin_[i].v;
+  for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next) {
     if (j == i) continue;
-    const double dt = contact_time<D>(separation(i, xi, j), vel_[j] - vi);
+    const double dt = contact_time<D>(separation(xi, j), kin_[j].v - vi);
     if (now_ + dt < coll_time_[i]) {
       coll_time_[i] = now_ + dt;
       coll_partner_[i] = j;
-      coll_counter_[i] = counter_[j];
+      coll_counter_[i] = kin_[j].counter;
     }
   }
 }
@@ -121,7 +162,7 @@ void Engine<D>::predict_crossing(std::int32_t i, const Vec<D>& xi) {
   std::int8_t dir = 0;
   const double h = grid_.side();
   for (int k = 0; k < D; ++k) {
-    const double v = vel_[i][k];
+    const double v = kin_[i].v[k];
     if (v == 0) continue;
     const double wall = (cell_[i][k] + (v > 0 ? 1 : 0)) * h;
     const double dt = std::max(0.0, (wall - xi[k]) / v);  // round-off can put xi a hair past it
@@ -147,7 +188,7 @@ void Engine<D>::schedule(std::int32_t i) {
 // when they have just stopped, because a moving neighbour may be heading for them.
 template <int D>
 void Engine<D>::predict(std::int32_t i) {
-  const Vec<D> xi = pos_[i] + vel_[i] * (now_ - tloc_[i]);
+  const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
   coll_time_[i] = kNever;
   coll_partner_[i] = -1;
   grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) { scan_cell(i, xi, cell); });
@@ -180,7 +221,7 @@ EventKind Engine<D>::process_next() {
     return EventKind::Crossing;
   }
   const std::int32_t j = coll_partner_[i];
-  if (counter_[j] != coll_counter_[i]) {  // the partner has changed course since
+  if (kin_[j].counter != coll_counter_[i]) {  // the partner has changed course since
     ++stats_.stale;
     predict(i);
     return EventKind::Stale;
@@ -196,20 +237,20 @@ template <int D>
 void Engine<D>::collide_pair(std::int32_t i, std::int32_t j) {
   advance(i);
   advance(j);
-  const Vec<D> dr = grid_.minimum_image(pos_[j] - pos_[i]);
+  const Vec<D> dr = grid_.minimum_image(kin_[j].x - kin_[i].x);
   const double dist = dr.norm();
   if (dist < 1.0 - 1e-9) {
     ++stats_.overlaps;
     stats_.max_overlap = std::max(stats_.max_overlap, 1.0 - dist);
   }
   const CollisionResult res =
-      collide<D>(vel_[i], vel_[j], dr / dist, config_.restitution, config_.cutoff);
+      collide<D>(kin_[i].v, kin_[j].v, dr / dist, config_.restitution, config_.cutoff);
   if (res.impulse > 0) {
     ++stats_.collisions;
     stats_.inelastic += res.inelastic;
     stats_.virial += res.impulse * dist;
-    ++counter_[i];
-    ++counter_[j];
+    ++kin_[i].counter;
+    ++kin_[j].counter;
     mark_active(i);
     mark_active(j);
   }
@@ -222,16 +263,16 @@ void Engine<D>::collide_pair(std::int32_t i, std::int32_t j) {
 template <int D>
 void Engine<D>::collide_sticky(std::int32_t i, std::int32_t j) {
   if constexpr (D == 1) {
-    const auto n = static_cast<std::int32_t>(vel_.size());
+    const auto n = static_cast<std::int32_t>(kin_.size());
     advance(i);
     advance(j);
-    const bool i_left = grid_.minimum_image(pos_[j] - pos_[i])[0] > 0;
+    const bool i_left = grid_.minimum_image(kin_[j].x - kin_[i].x)[0] > 0;
     const std::int32_t left = i_left ? i : j, right = i_left ? j : i;
     GS_CHECK((left + 1) % n == right);
     const std::int32_t lo = cluster_lo_[left], hi = cluster_hi_[right];
     const std::int32_t size_a = (left - lo + n) % n + 1, size_b = (hi - right + n) % n + 1;
     const Vec<D> v =
-        (static_cast<double>(size_a) * vel_[left] + static_cast<double>(size_b) * vel_[right]) /
+        (static_cast<double>(size_a) * kin_[left].v + static_cast<double>(size_b) * kin_[right].v) /
         static_cast<double>(size_a + size_b);
     ++stats_.collisions;
     ++stats_.inelastic;
@@ -239,8 +280,8 @@ void Engine<D>::collide_sticky(std::int32_t i, std::int32_t j) {
     cluster_lo_[hi] = lo;
     for (std::int32_t k = lo, m = 0; m < size_a + size_b; k = (k + 1) % n, ++m) {
       advance(k);
-      vel_[k] = v;
-      ++counter_[k];
+      kin_[k].v = v;
+      ++kin_[k].counter;
       mark_active(k);
     }
     for (std::int32_t k = lo, m = 0; m < size_a + size_b; k = (k + 1) % n, ++m) predict(k);
@@ -259,11 +300,11 @@ void Engine<D>::cross_cell(std::int32_t i) {
   int c = cell_[i][k] + step;
   if (c == grid_.per_side()) {
     c = 0;
-    pos_[i][k] -= grid_.box();
+    kin_[i].x[k] -= grid_.box();
     ++image_[i][k];
   } else if (c < 0) {
     c = grid_.per_side() - 1;
-    pos_[i][k] += grid_.box();
+    kin_[i].x[k] += grid_.box();
     --image_[i][k];
   }
   cell_[i][k] = c;
@@ -272,11 +313,11 @@ void Engine<D>::cross_cell(std::int32_t i) {
   // The best collision among the old neighbours is still the best unless its partner moved on;
   // then only the layer of cells that has just come into reach needs a look.
   const std::int32_t p = coll_partner_[i];
-  if (p < 0 || counter_[p] != coll_counter_[i]) {
+  if (p < 0 || kin_[p].counter != coll_counter_[i]) {
     predict(i);
     return;
   }
-  const Vec<D> xi = pos_[i];
+  const Vec<D> xi = kin_[i].x;
   grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step),
                           [&](std::int32_t cell) { scan_cell(i, xi, cell); });
   predict_crossing(i, xi);
@@ -292,9 +333,9 @@ Sample Engine<D>::sample() const {
   Vec<D> com = Vec<D>::Zero();
   double v2_active = 0;
   for (std::int32_t i : moved_) {
-    const double v2 = vel_[i].squaredNorm();
+    const double v2 = kin_[i].v.squaredNorm();
     s.energy += 0.5 * v2;
-    for (int k = 0; k < D; ++k) s.momentum[k] += vel_[i][k];
+    for (int k = 0; k < D; ++k) s.momentum[k] += kin_[i].v[k];
     if (!active_[i]) continue;
     ++s.active;
     v2_active += v2;
@@ -316,36 +357,39 @@ Snapshot Engine<D>::snapshot() const {
   s.info.dim = D;
   s.info.box = grid_.box();
   s.info.time = now_;
-  s.info.density = static_cast<double>(vel_.size()) / std::pow(grid_.box(), D);
+  s.info.density = static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;
   s.info.seed = config_.seed;
-  const std::size_t n = vel_.size();
+  const std::size_t n = kin_.size();
   s.position.resize(n);
   s.velocity.resize(n);
   s.radius.assign(n, 0.5);
-  s.active = active_;
-  s.first_collision = first_collision_;
+  s.active.resize(n);
+  s.first_collision.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> x = position(static_cast<std::int32_t>(i));
-    s.position[i].setZero();
-    s.velocity[i].setZero();
-    s.position[i].template head<D>() = x;
-    s.velocity[i].template head<D>() = vel_[i];
+    const std::size_t t = static_cast<std::size_t>(tag_[i]);
+    s.position[t].setZero();
+    s.velocity[t].setZero();
+    s.position[t].template head<D>() = x;
+    s.velocity[t].template head<D>() = kin_[i].v;
+    s.active[t] = active_[i];
+    s.first_collision[t] = first_collision_[i];
   }
   return s;
 }
 
 template <int D>
 double Engine<D>::max_overlap_now() const {
-  const auto n = static_cast<std::int32_t>(vel_.size());
+  const auto n = static_cast<std::int32_t>(kin_.size());
   double deepest = 0;
   for (std::int32_t i = 0; i < n; ++i) {
-    const Vec<D> xi = pos_[i] + vel_[i] * (now_ - tloc_[i]);
+    const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
-        if (j > i) deepest = std::max(deepest, 1.0 - separation(i, xi, j).norm());
+      for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next)
+        if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });
   }
   return deepest;

@@ -1,0 +1,67 @@
+// `grainshock bench`: the benchmarks of every area, as a table or JSON.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <sstream>
+
+#include "apps/cli.h"
+#include "apps/commands.h"
+#include "bench/bench.h"
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs::app {
+
+void add_bench_command(CLI::App& app) {
+  struct Options {
+    std::vector<std::string> filter;
+    bool all = false, list = false;
+    std::string json;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("bench", "Run the benchmarks (speed figures, not tests)");
+  sub->add_option("filter", opt->filter, "Run only cases whose name contains one of these");
+  sub->add_flag("--all", opt->all, "Include the heavy paper-scale cases");
+  sub->add_flag("--list", opt->list, "List the cases and exit");
+  sub->add_option("--json", opt->json, "Also write the figures to this JSON file");
+  sub->callback([opt] {
+    std::vector<bench::Case> cases;
+    bench::add_sim_cases(cases);
+    bench::add_render_cases(cases);
+    bench::add_movie_cases(cases);
+    auto selected = [&](const bench::Case& c) {
+      if (opt->filter.empty()) return opt->all || !c.heavy;
+      for (const auto& f : opt->filter)
+        if (c.name.find(f) != std::string::npos) return true;
+      return false;
+    };
+    if (opt->list) {
+      for (const auto& c : cases)
+        std::printf("%-28s %s%s\n", c.name.c_str(), c.description.c_str(),
+                    c.heavy ? " [heavy]" : "");
+      return;
+    }
+    std::ostringstream json;
+    json << "[\n";
+    bool first = true, any = false;
+    for (const auto& c : cases) {
+      if (!selected(c)) continue;
+      any = true;
+      std::printf("%s: %s\n", c.name.c_str(), c.description.c_str());
+      std::fflush(stdout);
+      for (const auto& f : c.run()) {
+        std::printf("  %-34s %14.6g %-4s %s\n", f.name.c_str(), f.value, f.unit.c_str(),
+                    f.target.empty() ? "" : ("target " + f.target).c_str());
+        json << (first ? "" : ",\n") << "  {\"case\": \"" << c.name << "\", \"figure\": \""
+             << f.name << "\", \"value\": " << format_double(f.value) << ", \"unit\": \""
+             << f.unit << "\"}";
+        first = false;
+      }
+      std::fflush(stdout);
+    }
+    if (!any) throw UserError("bench: no case matches the filter (see --list)");
+    json << "\n]\n";
+    if (!opt->json.empty()) write_file_atomic(opt->json, json.str());
+  });
+}
+
+}  // namespace gs::app

@@ -1,0 +1,99 @@
+// Engine benchmarks of issue 2. Reference figures on this kind of machine (2 cores): the
+// fastest public CPU event-driven code (Smallenburg's EDMD, 2022) makes 0.1-0.2 million
+// collisions per CPU-second at packing 0.2 and 0.26-0.38 million at 0.5 on the thermal case;
+// DynamO 0.035-0.045 million, and 0.034 million on the kick.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "bench/bench.h"
+#include "sim/engine.h"
+#include "sim/initial.h"
+
+namespace gs::bench {
+namespace {
+
+// Collisions per CPU-second of an elastic thermal 3D gas, measured after 2 collisions per
+// particle of warm-up (the start is a random or lattice packing, not an equilibrium one).
+std::vector<Figure> thermal3d(double packing) {
+  PhysicsConfig c;
+  c.dim = 3;
+  c.particles = 100000;
+  c.density = packing * 6 / std::numbers::pi;
+  c.restitution = 1.0;
+  c.initial = Initial::Thermal;
+  InitialState<3> init;
+  Rng pos(c.seed, 0, Stream::Positions), vel(c.seed, 0, Stream::Velocities);
+  // Random sequential addition stops near packing 0.38; denser gases start on a lattice.
+  init.position = packing < 0.35 ? random_sequential_addition<3>(c.particles, c.box(), pos)
+                                 : cubic_lattice<3>(c.particles, c.box());
+  init.velocity = thermal_velocities<3>(c.particles, 1.0, vel);
+  Engine<3> sim(c, std::move(init));
+  const auto warm_up = 2 * c.particles, measured = 20 * c.particles;
+  double t = 0;
+  while (sim.stats().collisions < warm_up) sim.run_until(t += 0.1);
+  const auto c0 = sim.stats().collisions, e0 = sim.stats().events;
+  const double cpu0 = cpu_seconds();
+  while (sim.stats().collisions < c0 + measured) sim.run_until(t += 0.1);
+  const double cpu = cpu_seconds() - cpu0;
+  const double coll = static_cast<double>(sim.stats().collisions - c0);
+  const double target = packing < 0.35 ? 0.4e6 : 0.76e6;  // 2x EDMD's best
+  return {{"collisions_per_cpu_second", coll / cpu, "1/s",
+           ">= " + std::to_string(target / 1e6).substr(0, 4) + "e6 (2x EDMD)"},
+          {"events_per_cpu_second", static_cast<double>(sim.stats().events - e0) / cpu, "1/s", ""},
+          {"overlaps", static_cast<double>(sim.stats().overlaps), "", "0"}};
+}
+
+std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
+  PhysicsConfig c;
+  c.dim = dim;
+  c.particles = n;
+  c.restitution = 0.8;
+  c.t_max = 87581;  // paper time ~4.4e4 in 2D
+  const double cpu0 = cpu_seconds();
+  auto sim = make_simulation(c);
+  const double cpu1 = cpu_seconds();
+  sim->run_until(c.t_max);
+  const double cpu2 = cpu_seconds();
+  const auto& st = sim->stats();
+  const double run = cpu2 - cpu1;
+  return {{"setup_cpu_seconds", cpu1 - cpu0, "s", ""},
+          {"run_cpu_seconds", run, "s", target},
+          {"collisions", static_cast<double>(st.collisions), "", ""},
+          {"events", static_cast<double>(st.events), "", ""},
+          {"active", static_cast<double>(sim->sample().active), "", ""},
+          {"collisions_per_cpu_second", static_cast<double>(st.collisions) / run, "1/s", ""},
+          {"cpu_microseconds_per_collision", 1e6 * run / static_cast<double>(st.collisions), "us",
+           ""},
+          {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
+}
+
+std::vector<Figure> rsa_2e6() {
+  Rng rng(1, 0, Stream::Positions);
+  const std::int64_t n = 2000000;
+  const double cpu0 = cpu_seconds();
+  const auto pos = random_sequential_addition<3>(n, std::cbrt(n / 0.25), rng);
+  const double cpu = cpu_seconds() - cpu0;
+  return {{"cpu_seconds", cpu, "s", "< 1 s"},
+          {"particles", static_cast<double>(pos.size()), "", "2e6"}};
+}
+
+}  // namespace
+
+void add_sim_cases(std::vector<Case>& cases) {
+  cases.push_back({"sim/thermal3d_phi0.2", "elastic 3D gas, N = 1e5, packing 0.2", false,
+                   [] { return thermal3d(0.2); }});
+  cases.push_back({"sim/thermal3d_phi0.5", "elastic 3D gas, N = 1e5, packing 0.5 (lattice start)",
+                   false, [] { return thermal3d(0.5); }});
+  cases.push_back({"sim/kick2d_paper", "2D kick, N = 2.5e5, r = 0.8, to t = 87581", false,
+                   [] { return kick(2, 250000, "< 1 s"); }});
+  cases.push_back({"sim/rsa3d_2e6", "random sequential addition of 2e6 spheres at n = 0.25", false,
+                   rsa_2e6});
+  cases.push_back({"sim/kick3d_2e5", "3D kick, N = 2e5, r = 0.8, to t = 87581", false,
+                   [] { return kick(3, 200000, ""); }});
+  cases.push_back({"sim/kick3d_2e6", "3D kick, N = 2e6, r = 0.8, to t = 87581 (cost per "
+                   "collision within 1.2x of N = 2e5)", true,
+                   [] { return kick(3, 2000000, ""); }});
+}
+
+}  // namespace gs::bench
