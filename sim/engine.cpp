@@ -1,10 +1,12 @@
 #include "sim/engine.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
 #include "sim/collision.h"
 #include "sim/error.h"
+#include "sim/observables.h"
 
 namespace gs {
 
@@ -343,10 +345,18 @@ Sample Engine<D>::sample() const {
   }
   if (s.active == 0) return s;
   com /= static_cast<double>(s.active);
-  double r2 = 0;
-  for (std::int32_t i : moved_)
-    if (active_[i]) r2 += (position(i) - com).squaredNorm();
-  s.radius_rms = std::sqrt(r2 / static_cast<double>(s.active));
+  Eigen::Matrix<double, D, D> gyration = Eigen::Matrix<double, D, D>::Zero();
+  for (std::int32_t i : moved_) {
+    if (!active_[i]) continue;
+    const Vec<D> d = position(i) - com;
+    gyration += d * d.transpose();
+  }
+  gyration /= static_cast<double>(s.active);
+  s.radius_rms = std::sqrt(gyration.trace());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(gyration);
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
+  for (int k = 0; k < D; ++k) lambda[k] = eigen.eigenvalues()[D - 1 - k];  // descending
+  s.anisotropy = anisotropy_index(D, lambda);
   s.speed_rms = std::sqrt(v2_active / static_cast<double>(s.active));
   return s;
 }

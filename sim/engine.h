@@ -30,6 +30,7 @@ struct Sample {
   double energy = 0;         // total kinetic energy (unit masses)
   double radius_rms = 0;     // rms distance of active particles from their centre of mass
   double speed_rms = 0;      // rms speed of active particles
+  double anisotropy = 0;     // A of the active particles' gyration tensor (sim/observables.h)
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   std::int64_t collisions = 0;
   std::int64_t events = 0;

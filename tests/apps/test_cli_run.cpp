@@ -25,7 +25,7 @@ TEST(CliRun, WritesTheRunFolder) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string csv = read_file(dir / "timeseries.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "t,t_paper,active,energy,radius_rms,speed_rms,collisions,events,overlaps,px,py");
+            "t,t_paper,active,energy,radius_rms,speed_rms,anisotropy,collisions,events,overlaps,px,py");
   const std::string summary = read_file(dir / "summary.json");
   for (const char* key : {"\"version\"", "\"seed\"", "\"setup_seconds\"", "\"run_seconds\"",
                           "\"events\"", "\"collisions\"", "\"overlaps\""})
