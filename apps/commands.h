@@ -7,5 +7,6 @@ namespace gs::app {
 void add_run_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_movie_command(CLI::App& app);
 
 }  // namespace gs::app

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   gs::app::add_run_command(app);
   gs::app::add_render_command(app);
   gs::app::add_bench_command(app);
+  gs::app::add_movie_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

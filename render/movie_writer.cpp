@@ -1,5 +1,7 @@
 #include "render/movie_writer.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -120,9 +122,10 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
 
   // The muxer reopens the file by name for +faststart, so libav works on the temporary name only.
   const auto folder = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
+  // Hidden, and unique per process so that two writers aimed at one name cannot mix their bytes.
   std::string temp_name = ".";  // appended piecewise: GCC 12 warns falsely on "." + string
   temp_name += path_.filename().string();
-  temp_name += ".partial";
+  temp_name += "." + std::to_string(getpid()) + ".partial";
   temp_path_ = folder / temp_name;
 
   encoded_width_ = round_up_even(o.width);

@@ -15,11 +15,10 @@
 
 extern "C" {
 #include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libswscale/swscale.h>
 }
 
 #include "render/movie_writer.h"
+#include "tests/render/movie_decode.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 
@@ -85,107 +84,6 @@ Image flat(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return img;
 }
 
-// PSNR over the RGB channels of the top-left w x h of both images.
-double psnr(const Image& a, const Image& b, int w, int h) {
-  double sum = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) {
-        const double d = double(a.pixel(x, y)[c]) - double(b.pixel(x, y)[c]);
-        sum += d * d;
-      }
-  const double mse = sum / (3.0 * w * h);
-  return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
-}
-
-struct Decoded {
-  AVCodecID codec = AV_CODEC_ID_NONE;
-  int width = 0, height = 0;
-  AVRational avg_frame_rate{0, 1}, r_frame_rate{0, 1};
-  double duration = 0;          // seconds, as a player shows it
-  std::int64_t nb_frames = 0;   // as the container says
-  int frames = 0;               // as decoded
-  AVColorRange range = AVCOL_RANGE_UNSPECIFIED;
-  AVColorSpace space = AVCOL_SPC_UNSPECIFIED;
-  AVColorPrimaries primaries = AVCOL_PRI_UNSPECIFIED;
-  AVColorTransferCharacteristic trc = AVCOL_TRC_UNSPECIFIED;
-  std::vector<int> centre_luma;  // Y at the picture centre, per frame
-  Image rgb;                     // the frame asked for, back to RGB (BT.709, limited range)
-};
-
-// Decodes the whole movie; frame `keep` (in presentation order) is converted back to RGBA.
-Decoded decode(const fs::path& path, int keep = -1) {
-  Decoded out;
-  AVFormatContext* fmt = nullptr;
-  if (avformat_open_input(&fmt, path.c_str(), nullptr, nullptr) < 0) {
-    ADD_FAILURE() << "cannot open " << path;
-    return out;
-  }
-  EXPECT_GE(avformat_find_stream_info(fmt, nullptr), 0);
-  const AVCodec* codec = nullptr;
-  const int si = av_find_best_stream(fmt, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0);
-  EXPECT_GE(si, 0);
-  if (si < 0) {
-    avformat_close_input(&fmt);
-    return out;
-  }
-  const AVStream* st = fmt->streams[si];
-  out.codec = st->codecpar->codec_id;
-  out.width = st->codecpar->width;
-  out.height = st->codecpar->height;
-  out.avg_frame_rate = st->avg_frame_rate;
-  out.r_frame_rate = st->r_frame_rate;
-  out.duration = fmt->duration == AV_NOPTS_VALUE ? -1 : double(fmt->duration) / AV_TIME_BASE;
-  out.nb_frames = st->nb_frames;
-  out.range = st->codecpar->color_range;
-  out.space = st->codecpar->color_space;
-  out.primaries = st->codecpar->color_primaries;
-  out.trc = st->codecpar->color_trc;
-
-  AVCodecContext* dec = avcodec_alloc_context3(codec);
-  EXPECT_GE(avcodec_parameters_to_context(dec, st->codecpar), 0);
-  EXPECT_GE(avcodec_open2(dec, codec, nullptr), 0);
-  AVPacket* pkt = av_packet_alloc();
-  AVFrame* frame = av_frame_alloc();
-  auto take = [&] {
-    if (out.frames == keep) {
-      out.rgb = Image(frame->width, frame->height);
-      SwsContext* sws = sws_getContext(frame->width, frame->height, AVPixelFormat(frame->format),
-                                       frame->width, frame->height, AV_PIX_FMT_RGBA,
-                                       SWS_BILINEAR | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT,
-                                       nullptr, nullptr, nullptr);
-      const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-      EXPECT_GE(sws_setColorspaceDetails(sws, bt709, 0, bt709, 1, 0, 1 << 16, 1 << 16), 0);
-      std::uint8_t* dst[1] = {out.rgb.rgba.data()};
-      const int stride[1] = {frame->width * 4};
-      sws_scale(sws, frame->data, frame->linesize, 0, frame->height, dst, stride);
-      sws_freeContext(sws);
-    }
-    out.centre_luma.push_back(frame->data[0][(frame->height / 2) * frame->linesize[0] + frame->width / 2]);
-    ++out.frames;
-  };
-  auto drain = [&] {
-    while (avcodec_receive_frame(dec, frame) == 0) {
-      take();
-      av_frame_unref(frame);
-    }
-  };
-  while (av_read_frame(fmt, pkt) >= 0) {
-    if (pkt->stream_index == si) {
-      EXPECT_GE(avcodec_send_packet(dec, pkt), 0);
-      drain();
-    }
-    av_packet_unref(pkt);
-  }
-  EXPECT_GE(avcodec_send_packet(dec, nullptr), 0);
-  drain();
-  av_frame_free(&frame);
-  av_packet_free(&pkt);
-  avcodec_free_context(&dec);
-  avformat_close_input(&fmt);
-  return out;
-}
-
 void write_scene(const fs::path& path, const MovieOptions& o, int frames) {
   MovieWriter movie(path, o);
   for (int k = 0; k < frames; ++k) movie.add(scene(o.width, o.height, k));
@@ -216,7 +114,7 @@ TEST(MovieWriter, H264ByDefaultWithRequestedTimingAndBt709Tags) {
   EXPECT_EQ(files_in(dir), std::vector<fs::path>{"movie.mp4"}) << "no temporary file left behind";
 
   const int k = 17;
-  const Decoded d = decode(dir / "movie.mp4", k);
+  const Decoded d = decode_movie(dir / "movie.mp4", k);
   EXPECT_EQ(d.codec, AV_CODEC_ID_H264);
   EXPECT_EQ(d.width, 320);
   EXPECT_EQ(d.height, 240);
@@ -278,7 +176,7 @@ TEST(MovieWriter, ConvertsWithBt709LimitedRange) {
     movie.add(flat(64, 48, 0, 0, 0));
     movie.finish();
   }
-  const Decoded d = decode(dir / "movie.mp4");
+  const Decoded d = decode_movie(dir / "movie.mp4");
   ASSERT_EQ(d.centre_luma.size(), 4u);
   EXPECT_NEAR(d.centre_luma[0], 63, 2);
   EXPECT_NEAR(d.centre_luma[1], 173, 2);
@@ -299,7 +197,7 @@ TEST(MovieWriter, OddSizesArePaddedByRepeatingTheEdge) {
     for (int k = 0; k < 10; ++k) movie.add(scene(o.width, o.height, k));
     movie.finish();
   }
-  const Decoded d = decode(dir / "movie.mp4", 5);
+  const Decoded d = decode_movie(dir / "movie.mp4", 5);
   EXPECT_EQ(d.width, 322);
   EXPECT_EQ(d.height, 242);
   EXPECT_EQ(d.frames, 10);
@@ -330,7 +228,7 @@ TEST(MovieWriter, Mpeg4FallbackCodec) {
     movie.finish();
   }
   const int k = 40;
-  const Decoded d = decode(dir / "movie.mp4", k);
+  const Decoded d = decode_movie(dir / "movie.mp4", k);
   EXPECT_EQ(d.codec, AV_CODEC_ID_MPEG4);
   EXPECT_EQ(d.width, 320);
   EXPECT_EQ(d.height, 240);
@@ -362,7 +260,7 @@ TEST(MovieWriter, StopSignalFinishesAPlayableMovie) {
   EXPECT_EQ(gs::stop_signal(), SIGTERM);
   gs::clear_stop();
   EXPECT_EQ(written, 30);
-  const Decoded d = decode(dir / "movie.mp4");
+  const Decoded d = decode_movie(dir / "movie.mp4");
   EXPECT_EQ(d.frames, 30);
   EXPECT_NEAR(d.duration, 30 / 30.0, 1e-3);
 }
@@ -409,7 +307,7 @@ TEST(MovieWriter, ChildKilledWithSigtermLeavesAPlayableMovie) {
   ASSERT_EQ(std::sscanf(last.c_str(), "frames %d", &frames), 1) << last;
   EXPECT_GE(frames, 20);
   EXPECT_EQ(files_in(dir), std::vector<fs::path>{"movie.mp4"});
-  const Decoded d = decode(dir / "movie.mp4");
+  const Decoded d = decode_movie(dir / "movie.mp4");
   EXPECT_EQ(d.frames, frames);
   EXPECT_NEAR(d.duration, frames / 30.0, 1e-3);
 }
@@ -529,7 +427,7 @@ TEST(MovieWriter, DiscardLeavesNoFileAndDestructorFinishes) {
     for (int k = 0; k < 7; ++k) movie.add(scene(64, 48, k));
   }
   EXPECT_EQ(files_in(dir), std::vector<fs::path>{"kept.mp4"});
-  EXPECT_EQ(decode(dir / "kept.mp4").frames, 7);
+  EXPECT_EQ(decode_movie(dir / "kept.mp4").frames, 7);
 }
 
 }  // namespace
