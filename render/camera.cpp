@@ -35,7 +35,7 @@ Camera make_camera_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& 
   return c;
 }
 
-Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& v) {
+Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& v) {
   Camera c;
   c.perspective = true;
   c.width = v.width, c.height = v.height;
@@ -44,8 +44,8 @@ Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& 
   const double deg = std::numbers::pi / 180;
   c.tan_half_y = std::tan(v.fov * deg / 2);
   c.tan_half_x = c.tan_half_y * aspect;
-  c.origin = v.centre ? *v.centre : fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
-  const double radius = (fit.isEmpty() ? 1.0 : (fit.sizes() / 2).norm()) + r_max;
+  c.origin = v.centre ? *v.centre : centre;
+  radius = std::max(radius + (c.origin - centre).norm(), 1e-6);
   const double half = std::atan(std::min(c.tan_half_x, c.tan_half_y));
   double dist = v.distance > 0 ? v.distance : radius * (1 + v.margin) / std::sin(half) / v.zoom;
   const double az = v.azimuth * deg, el = v.elevation * deg;
@@ -62,7 +62,7 @@ Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& 
   c.view.block<1, 3>(1, 0) = cam_up.transpose();
   c.view.block<1, 3>(2, 0) = -c.forward.transpose();
   c.view.block<3, 1>(0, 3) = -(c.view.block<3, 3>(0, 0) * eye);
-  const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + r_max) : radius;
+  const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + 1) : radius;
   c.near = std::max(dist - reach - 1, dist * 1e-3);
   c.far = dist + radius + 1;
   c.proj.setZero();

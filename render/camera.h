@@ -29,6 +29,7 @@ struct Camera {
 
 // `fit` is the box to frame (fitted particles or the periodic box), r_max the largest radius.
 Camera make_camera_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& v);
-Camera make_camera_3d(const Eigen::AlignedBox3d& fit, double r_max, const View& v);
+// `centre` and `radius` bound what to frame (particle radii included).
+Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& v);
 
 }  // namespace gs::render

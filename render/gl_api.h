@@ -11,6 +11,7 @@ class GLContext;
   X(PFNGLGETERRORPROC, GetError)                                                                \
   X(PFNGLGETSTRINGPROC, GetString)                                                              \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                          \
+  X(PFNGLGETFLOATVPROC, GetFloatv)                                                          \
   X(PFNGLVIEWPORTPROC, Viewport)                                                                \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                                            \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                                                            \
@@ -52,7 +53,8 @@ class GLContext;
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                                          \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                                  \
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                                          \
-  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                                          \
+  X(PFNGLDRAWELEMENTSPROC, DrawElements)                                                        \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                          \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                                                  \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                                  \
   X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)                                  \

@@ -16,12 +16,42 @@ namespace {
 
 constexpr int kHardSizeLimit = 16384;
 
-// Per-particle data on the GPU: centre relative to the camera origin, radius, colour.
+// Per-particle data on the GPU: centre relative to the camera origin, radius, colour; stored
+// once for each corner of the particle's quad. llvmpipe runs an instanced draw as one small draw
+// per instance, several times slower than this single indexed draw, which costs 4x the memory.
 struct Instance {
   float x, y, z, r;
   std::uint8_t rgba[4];
 };
 static_assert(sizeof(Instance) == 20);
+
+// 2D discs as point sprites: llvmpipe rasterizes a point as one rectangle, where a quad costs
+// two triangle set-ups, which dominate when 2.5e5 discs are a pixel or two wide.
+const char* kPointVS = R"(#version 330 core
+layout(location = 0) in vec4 inst;
+layout(location = 1) in vec4 colour;
+uniform vec2 scale;
+uniform float ppu;
+out float rad_px;
+out vec4 col;
+void main() {
+  rad_px = inst.w * ppu;
+  gl_PointSize = 2.0 * (rad_px + 1.0);
+  gl_Position = vec4(inst.xy * scale, 0.0, 1.0);
+  col = colour;
+}
+)";
+const char* kPointFS = R"(#version 330 core
+in float rad_px;
+in vec4 col;
+out vec4 frag;
+void main() {
+  vec2 local = (gl_PointCoord * 2.0 - 1.0) * (rad_px + 1.0);
+  float a = clamp(rad_px + 0.5 - length(local), 0.0, 1.0);
+  if (a <= 0.0) discard;
+  frag = vec4(col.rgb, col.a * a);
+}
+)";
 
 const char* kDiscVS = R"(#version 330 core
 layout(location = 0) in vec4 inst;
@@ -159,12 +189,13 @@ void check_style(const Style& style) {
 struct Renderer::Impl {
   std::unique_ptr<GLContext> ctx;
   GLApi gl;
-  GLuint disc_prog = 0, sphere_prog = 0, vao = 0, vbo = 0;
-  std::size_t vbo_bytes = 0;
+  GLuint point_prog = 0, disc_prog = 0, sphere_prog = 0, vao = 0, vbo = 0, ibo = 0;
+  std::size_t vbo_bytes = 0, ibo_quads = 0;
   GLuint fbo = 0, colour_rb = 0, depth_rb = 0;  // drawn into (multisampled or not)
   GLuint resolve_fbo = 0, resolve_rb = 0;       // single-sample copy when multisampled
   int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
   int max_size = 0, max_samples = 0;
+  float max_point_size = 1;
   std::vector<Instance> instances;
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;
@@ -213,19 +244,23 @@ struct Renderer::Impl {
                          static_cast<int>(dims[1])});
     gl.GetIntegerv(GL_MAX_SAMPLES, &v);
     max_samples = v;
+    GLfloat range[2] = {1, 1};
+    gl.GetFloatv(GL_POINT_SIZE_RANGE, range);
+    max_point_size = range[1];
     disc_prog = link(kDiscVS, kDiscFS);
+    point_prog = link(kPointVS, kPointFS);
     sphere_prog = link(kSphereVS, kSphereFS);
     gl.GenVertexArrays(1, &vao);
     gl.GenBuffers(1, &vbo);
+    gl.GenBuffers(1, &ibo);
     gl.BindVertexArray(vao);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
     gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), nullptr);
     gl.VertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance),
                            reinterpret_cast<const void*>(offsetof(Instance, rgba)));
     gl.EnableVertexAttribArray(0);
     gl.EnableVertexAttribArray(1);
-    gl.VertexAttribDivisor(0, 1);
-    gl.VertexAttribDivisor(1, 1);
     GS_CHECK(gl.GetError() == GL_NO_ERROR);
   }
 
@@ -270,7 +305,21 @@ struct Renderer::Impl {
     fbo_w = w, fbo_h = h, fbo_samples = samples;
   }
 
-  void upload() {
+  void upload(bool quad_indices) {
+    const std::size_t quads = instances.size() / 4;
+    if (quad_indices && quads > ibo_quads) {
+      // Two triangles per quad; the indices never change, so they grow but are never rewritten.
+      ibo_quads = std::max(quads, ibo_quads * 3 / 2);
+      std::vector<GLuint> idx(ibo_quads * 6);
+      for (std::size_t q = 0; q < ibo_quads; ++q) {
+        const auto b = static_cast<GLuint>(4 * q);
+        const GLuint tri[6] = {b, b + 1, b + 2, b + 2, b + 1, b + 3};
+        std::copy(tri, tri + 6, idx.begin() + static_cast<std::ptrdiff_t>(6 * q));
+      }
+      gl.BindVertexArray(vao);
+      gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)),
+                    idx.data(), GL_STATIC_DRAW);
+    }
     const std::size_t bytes = instances.size() * sizeof(Instance);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
     // Orphan and refill: the driver need not wait for the previous frame's draw.
@@ -288,6 +337,7 @@ Renderer::~Renderer() {
   impl_->ctx->make_current();
   impl_->free_targets();
   gl.DeleteBuffers(1, &impl_->vbo);
+  gl.DeleteBuffers(1, &impl_->ibo);
   gl.DeleteVertexArrays(1, &impl_->vao);
   gl.DeleteProgram(impl_->disc_prog);
   gl.DeleteProgram(impl_->sphere_prog);
@@ -346,17 +396,44 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
         if (pass == 1 || s->active[i]) fit.extend(wrapped(s->position[i]));
   for (const Snapshot* s : snaps)
     for (double r : s->radius) r_max = std::max(r_max, r);
-  const Camera cam = three_d ? make_camera_3d(fit, r_max, view) : make_camera_2d(fit, r_max, view);
+  Camera cam;
+  if (three_d) {
+    // Bounding sphere about the box's centre: tighter than the box's corners for a shell.
+    const Eigen::Vector3d c = fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
+    double r2 = 0;
+    const bool all = std::none_of(snaps.begin(), snaps.end(), [](const Snapshot* s) {
+      return std::find(s->active.begin(), s->active.end(), 1) != s->active.end();
+    });
+    if (wrap) r2 = (fit.sizes() / 2).squaredNorm();
+    else
+      for (const Snapshot* s : snaps)
+        for (std::size_t i = 0; i < s->size(); ++i)
+          if (all || s->active[i]) r2 = std::max(r2, (s->position[i] - c).squaredNorm());
+    cam = make_camera_3d(c, std::sqrt(r2) + r_max, view);
+  } else {
+    cam = make_camera_2d(fit, r_max, view);
+  }
   m.info.camera = cam;
+
+  // Sprites up to the driver's largest point size, quads beyond (a close-up of a few discs).
+  // GL drops a point whose centre is off the viewport, so sprites are drawn into a framebuffer
+  // larger by a margin of one sprite radius and the picture is read from its middle.
+  const double sprite_px = 2 * (r_max * cam.pixels_per_unit() + 1);
+  const int margin = static_cast<int>(std::ceil(sprite_px / 2)) + 1;
+  const bool points = !three_d && sprite_px <= m.max_point_size &&
+                      std::max(view.width, view.height) + 2 * margin <= m.max_size;
+  const int pad = points ? margin : 0;
+  const int per_particle = points ? 1 : 4;
 
   // Instances: inactive (if shown) first so the 2D discs of active ones lie on top.
   m.instances.clear();
   auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c) {
     if (!cam.visible(p, r)) return;
     const Eigen::Vector3d d = p - cam.origin;
-    m.instances.push_back({static_cast<float>(d.x()), static_cast<float>(d.y()),
-                           static_cast<float>(three_d ? d.z() : 0.0), static_cast<float>(r),
-                           {c[0], c[1], c[2], 255}});
+    const Instance v{static_cast<float>(d.x()), static_cast<float>(d.y()),
+                     static_cast<float>(three_d ? d.z() : 0.0), static_cast<float>(r),
+                     {c[0], c[1], c[2], 255}};
+    m.instances.insert(m.instances.end(), per_particle, v);
   };
   if (style.show_inactive) {
     const Snapshot& s = *snaps.back();
@@ -375,27 +452,32 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
       push(wrapped(s.position[i]), s.radius[i], c);
     }
   }
-  m.info.drawn = m.instances.size();
+  m.info.drawn = m.instances.size() / per_particle;
 
   const int samples = three_d ? std::min(std::max(style.msaa, 0), m.max_samples) : 0;
   m.ctx->make_current();
-  m.ensure_targets(view.width, view.height, samples);
+  const int fb_w = view.width + 2 * pad, fb_h = view.height + 2 * pad;
+  m.ensure_targets(fb_w, fb_h, samples);
   gl.BindFramebuffer(GL_FRAMEBUFFER, m.fbo);
-  gl.Viewport(0, 0, view.width, view.height);
+  gl.Viewport(0, 0, fb_w, fb_h);
   gl.ClearColor(pal.background[0] / 255.f, pal.background[1] / 255.f, pal.background[2] / 255.f, 1);
   gl.ClearDepth(1.0);
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  m.upload();
+  m.upload(!points);
   gl.BindVertexArray(m.vao);
   if (!three_d) {
     gl.Disable(GL_DEPTH_TEST);
     gl.Enable(GL_BLEND);
     gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    gl.UseProgram(m.disc_prog);
-    gl.Uniform1f(gl.GetUniformLocation(m.disc_prog, "ppu"),
+    const GLuint prog = points ? m.point_prog : m.disc_prog;
+    gl.Enable(GL_PROGRAM_POINT_SIZE);
+    gl.UseProgram(prog);
+    gl.Uniform1f(gl.GetUniformLocation(prog, "ppu"),
                  static_cast<float>(cam.pixels_per_unit()));
-    const GLint loc = gl.GetUniformLocation(m.disc_prog, "scale");
-    gl.Uniform2f(loc, static_cast<float>(1 / cam.half_w), static_cast<float>(1 / cam.half_h));
+    const GLint loc = gl.GetUniformLocation(prog, "scale");
+    const double pad_units = pad / cam.pixels_per_unit();
+    gl.Uniform2f(loc, static_cast<float>(1 / (cam.half_w + pad_units)),
+                 static_cast<float>(1 / (cam.half_h + pad_units)));
   } else {
     gl.Disable(GL_BLEND);
     gl.Enable(GL_DEPTH_TEST);
@@ -412,8 +494,11 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     const Eigen::Vector3f light = Eigen::Vector3f(-0.4f, 0.55f, 0.75f).normalized();
     gl.Uniform3f(gl.GetUniformLocation(m.sphere_prog, "light"), light.x(), light.y(), light.z());
   }
-  if (!m.instances.empty())
-    gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(m.instances.size()));
+  if (points && !m.instances.empty())
+    gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m.instances.size()));
+  else if (!m.instances.empty())
+    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.instances.size() / 4 * 6), GL_UNSIGNED_INT,
+                    nullptr);
   if (samples > 0) {
     gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
@@ -425,7 +510,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   Image img(view.width, view.height);
   m.readback.resize(img.rgba.size());
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, view.width, view.height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());
+  gl.ReadPixels(pad, pad, view.width, view.height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());
   if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
     throw UserError("OpenGL error " + std::to_string(e) + " while rendering " +
                     std::to_string(view.width) + "x" + std::to_string(view.height));
