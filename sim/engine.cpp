@@ -144,16 +144,30 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
   return grid_.minimum_image(k.x + k.v * (now_ - k.t) - xi);
 }
 
+// Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
+// first particle of every cell is fetched before any is examined, so that their cache misses
+// overlap instead of queueing behind each other (the search is bound by memory latency).
 template <int D>
-void Engine<D>::scan_cell(std::int32_t i, const Vec<D>& xi, std::int32_t cell) {
+template <class ForEachCell>
+void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
+  std::int32_t first[27];
+  int count = 0;
+  for_each_cell([&](std::int32_t cell) {
+    const std::int32_t h = head_[cell];
+    if (h < 0) return;
+    __builtin_prefetch(&kin_[h]);
+    first[count++] = h;
+  });
   const Vec<D> vi = kin_[i].v;
-  for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next) {
-    if (j == i) continue;
-    const double dt = contact_time<D>(separation(xi, j), kin_[j].v - vi);
-    if (now_ + dt < coll_time_[i]) {
-      coll_time_[i] = now_ + dt;
-      coll_partner_[i] = j;
-      coll_counter_[i] = kin_[j].counter;
+  for (int c = 0; c < count; ++c) {
+    for (std::int32_t j = first[c]; j >= 0; j = kin_[j].next) {
+      if (j == i) continue;
+      const double dt = contact_time<D>(separation(xi, j), kin_[j].v - vi);
+      if (now_ + dt < coll_time_[i]) {
+        coll_time_[i] = now_ + dt;
+        coll_partner_[i] = j;
+        coll_counter_[i] = kin_[j].counter;
+      }
     }
   }
 }
@@ -193,7 +207,7 @@ void Engine<D>::predict(std::int32_t i) {
   const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
   coll_time_[i] = kNever;
   coll_partner_[i] = -1;
-  grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) { scan_cell(i, xi, cell); });
+  scan_cells(i, xi, [&](auto&& f) { grid_.for_each_neighbour(cell_[i], f); });
   predict_crossing(i, xi);
   schedule(i);
 }
@@ -320,8 +334,7 @@ void Engine<D>::cross_cell(std::int32_t i) {
     return;
   }
   const Vec<D> xi = kin_[i].x;
-  grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step),
-                          [&](std::int32_t cell) { scan_cell(i, xi, cell); });
+  scan_cells(i, xi, [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
   predict_crossing(i, xi);
   schedule(i);
 }

@@ -94,7 +94,8 @@ class Engine final : public Simulation {
   EventKind process_next();
   void advance(std::int32_t i);
   Vec<D> separation(const Vec<D>& xi, std::int32_t j) const;
-  void scan_cell(std::int32_t i, const Vec<D>& xi, std::int32_t cell);
+  template <class ForEachCell>
+  void scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell);
   void predict(std::int32_t i);
   void predict_crossing(std::int32_t i, const Vec<D>& xi);
   void schedule(std::int32_t i);
