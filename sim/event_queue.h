@@ -1,38 +1,61 @@
 #pragma once
-// Priority queue of the next event of each moving particle: an indexed binary min-heap with one
+// Priority queue of the next event of each moving particle: an indexed 4-ary min-heap with one
 // slot per particle, so that rescheduling a particle is a key update in place (no stale entries,
-// no growth). Particles at rest are simply absent. Storage is sized once for all particles; the
-// hot loop never allocates.
+// no growth). Particles at rest are simply absent. The four children of a node share one cache
+// line, which halves the misses of a binary heap when the queue outgrows the cache. Storage is
+// sized once for all particles; the hot loop never allocates.
+#include <algorithm>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "sim/error.h"
 
 namespace gs {
 
+template <class T, std::size_t Align>
+struct AlignedAllocator {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = AlignedAllocator<U, Align>;
+  };
+  AlignedAllocator() = default;
+  template <class U>
+  AlignedAllocator(const AlignedAllocator<U, Align>&) {}
+  T* allocate(std::size_t n) {
+    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{Align}));
+  }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{Align}); }
+  template <class U>
+  bool operator==(const AlignedAllocator<U, Align>&) const {
+    return true;
+  }
+};
+
 class EventQueue {
  public:
-  explicit EventQueue(std::size_t n) : where_(n, kAbsent) { heap_.reserve(n); }
+  explicit EventQueue(std::size_t n) : where_(n, kAbsent) { storage_.resize(n + kPad); }
 
-  bool empty() const { return heap_.empty(); }
-  std::size_t size() const { return heap_.size(); }
-  std::int32_t top() const { return heap_.front().id; }
-  double top_time() const { return heap_.front().time; }
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return static_cast<std::size_t>(size_); }
+  std::int32_t top() const { return heap(0).id; }
+  double top_time() const { return heap(0).time; }
   bool contains(std::int32_t id) const { return where_[id] != kAbsent; }
 
   // Inserts particle `id` with event time `t`, or moves it to `t` if already present.
   void set(std::int32_t id, double t) {
     std::int32_t k = where_[id];
     if (k == kAbsent) {
-      k = static_cast<std::int32_t>(heap_.size());
-      heap_.push_back({t, id});
+      k = size_++;
+      heap(k) = {t, id};
       where_[id] = k;
       sift_up(k);
-    } else if (t < heap_[k].time) {
-      heap_[k].time = t;
+    } else if (t < heap(k).time) {
+      heap(k).time = t;
       sift_up(k);
     } else {
-      heap_[k].time = t;
+      heap(k).time = t;
       sift_down(k);
     }
   }
@@ -41,10 +64,9 @@ class EventQueue {
     const std::int32_t k = where_[id];
     if (k == kAbsent) return;
     where_[id] = kAbsent;
-    const Node last = heap_.back();
-    heap_.pop_back();
-    if (k == static_cast<std::int32_t>(heap_.size())) return;
-    heap_[k] = last;
+    const Node last = heap(--size_);
+    if (k == size_) return;
+    heap(k) = last;
     where_[last.id] = k;
     sift_up(k);
     sift_down(where_[last.id]);
@@ -52,41 +74,50 @@ class EventQueue {
 
  private:
   static constexpr std::int32_t kAbsent = -1;
-  struct Node {
+  struct alignas(16) Node {
     double time;
     std::int32_t id;
   };
+  // Node k lives at storage_[k + kPad]: the children 4k+1..4k+4 then start on a multiple of 4,
+  // i.e. on a 64-byte boundary.
+  static constexpr std::int32_t kPad = 3;
+
+  Node& heap(std::int32_t k) { return storage_[static_cast<std::size_t>(k + kPad)]; }
+  const Node& heap(std::int32_t k) const { return storage_[static_cast<std::size_t>(k + kPad)]; }
 
   void sift_up(std::int32_t k) {
-    const Node x = heap_[k];
+    const Node x = heap(k);
     while (k > 0) {
-      const std::int32_t p = (k - 1) / 2;
-      if (!(x.time < heap_[p].time)) break;
-      heap_[k] = heap_[p];
-      where_[heap_[k].id] = k;
+      const std::int32_t p = (k - 1) / 4;
+      if (!(x.time < heap(p).time)) break;
+      heap(k) = heap(p);
+      where_[heap(k).id] = k;
       k = p;
     }
-    heap_[k] = x;
+    heap(k) = x;
     where_[x.id] = k;
   }
 
   void sift_down(std::int32_t k) {
-    const std::int32_t n = static_cast<std::int32_t>(heap_.size());
-    const Node x = heap_[k];
+    const Node x = heap(k);
     for (;;) {
-      std::int32_t c = 2 * k + 1;
-      if (c >= n) break;
-      if (c + 1 < n && heap_[c + 1].time < heap_[c].time) ++c;
-      if (!(heap_[c].time < x.time)) break;
-      heap_[k] = heap_[c];
-      where_[heap_[k].id] = k;
+      const std::int32_t first = 4 * k + 1;
+      if (first >= size_) break;
+      const std::int32_t last = std::min(first + 4, size_);
+      std::int32_t c = first;
+      for (std::int32_t m = first + 1; m < last; ++m)
+        if (heap(m).time < heap(c).time) c = m;
+      if (!(heap(c).time < x.time)) break;
+      heap(k) = heap(c);
+      where_[heap(k).id] = k;
       k = c;
     }
-    heap_[k] = x;
+    heap(k) = x;
     where_[x.id] = k;
   }
 
-  std::vector<Node> heap_;
+  std::vector<Node, AlignedAllocator<Node, 64>> storage_;
+  std::int32_t size_ = 0;
   std::vector<std::int32_t> where_;  // heap slot of each particle, or kAbsent
 };
 
