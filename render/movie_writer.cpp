@@ -160,8 +160,8 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
 
     AVDictionary* codec_opts = nullptr;
     if (x264) {
-      av_dict_set(&codec_opts, "preset", o.preset.c_str(), 0);
-      av_dict_set(&codec_opts, "crf", std::to_string(o.crf).c_str(), 0);
+      GS_CHECK(av_dict_set(&codec_opts, "preset", o.preset.c_str(), 0) >= 0);
+      GS_CHECK(av_dict_set(&codec_opts, "crf", std::to_string(o.crf).c_str(), 0) >= 0);
     } else {
       enc->flags |= AV_CODEC_FLAG_QSCALE;
       enc->global_quality = FF_QP2LAMBDA * std::max(1, (o.crf + 3) / 6);
@@ -186,7 +186,7 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
     AVDictionary* mux_opts = nullptr;
     // The index goes to the front so that players and browsers can start before the download ends.
     if (av_opt_find(av.format->priv_data, "movflags", nullptr, 0, 0))
-      av_dict_set(&mux_opts, "movflags", "+faststart", 0);
+      GS_CHECK(av_dict_set(&mux_opts, "movflags", "+faststart", 0) >= 0);
     const int header = avformat_write_header(av.format, &mux_opts);
     const int unused_mux = av_dict_count(mux_opts);
     av_dict_free(&mux_opts);
