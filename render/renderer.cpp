@@ -141,6 +141,28 @@ void main() {
 }
 )";
 
+// The disc fragment shader's coverage rule on the CPU: pixel centres at half-integers, the
+// picture's centre at the camera origin, y up.
+void splat_discs(Image& img, const std::vector<Instance>& discs, double ppu) {
+  const double cx = img.width / 2.0, cy = img.height / 2.0;
+  for (const Instance& d : discs) {
+    const double X = cx + d.x * ppu, Y = cy - d.y * ppu, rad = d.r * ppu;
+    const int x0 = std::max(0, static_cast<int>(std::floor(X - rad - 1)));
+    const int x1 = std::min(img.width - 1, static_cast<int>(std::ceil(X + rad + 1)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad - 1)));
+    const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad + 1)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double dx = x + 0.5 - X, dy = y + 0.5 - Y;
+        const double a = std::clamp(rad + 0.5 - std::sqrt(dx * dx + dy * dy), 0.0, 1.0);
+        if (a <= 0) continue;
+        std::uint8_t* p = img.pixel(x, y);
+        for (int k = 0; k < 3; ++k)
+          p[k] = static_cast<std::uint8_t>(std::lround(p[k] + a * (d.rgba[k] - p[k])));
+      }
+  }
+}
+
 struct Palette {
   Rgb8 background, text, inactive;
 };
@@ -415,15 +437,20 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   }
   m.info.camera = cam;
 
-  // Sprites up to the driver's largest point size, quads beyond (a close-up of a few discs).
-  // GL drops a point whose centre is off the viewport, so sprites are drawn into a framebuffer
-  // larger by a margin of one sprite radius and the picture is read from its middle.
-  const double sprite_px = 2 * (r_max * cam.pixels_per_unit() + 1);
+  // 2D discs below splat_below_px in radius are drawn on the CPU after readback: llvmpipe spends
+  // about half a microsecond of CPU per primitive however small, so a paper-size frame (2.5e5
+  // discs a pixel wide) costs 150-250 ms through GL and ~15 ms splatted with the same coverage
+  // rule. Larger discs go through GL as sprites up to the driver's largest point size, as quads
+  // beyond. GL drops a point whose centre is off the viewport, so sprites are drawn into a
+  // framebuffer larger by a margin of one sprite radius and the picture read from its middle.
+  const double rad_px = r_max * cam.pixels_per_unit();
+  const bool splat = !three_d && rad_px < style.splat_below_px;
+  const double sprite_px = 2 * (rad_px + 1);
   const int margin = static_cast<int>(std::ceil(sprite_px / 2)) + 1;
-  const bool points = !three_d && sprite_px <= m.max_point_size &&
+  const bool points = !three_d && !splat && sprite_px <= m.max_point_size &&
                       std::max(view.width, view.height) + 2 * margin <= m.max_size;
   const int pad = points ? margin : 0;
-  const int per_particle = points ? 1 : 4;
+  const int per_particle = points || splat ? 1 : 4;
 
   // Instances: inactive (if shown) first so the 2D discs of active ones lie on top.
   m.instances.clear();
@@ -463,7 +490,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   gl.ClearColor(pal.background[0] / 255.f, pal.background[1] / 255.f, pal.background[2] / 255.f, 1);
   gl.ClearDepth(1.0);
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  m.upload(!points);
+  if (!splat) m.upload(!points);
   gl.BindVertexArray(m.vao);
   if (!three_d) {
     gl.Disable(GL_DEPTH_TEST);
@@ -494,9 +521,10 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     const Eigen::Vector3f light = Eigen::Vector3f(-0.4f, 0.55f, 0.75f).normalized();
     gl.Uniform3f(gl.GetUniformLocation(m.sphere_prog, "light"), light.x(), light.y(), light.z());
   }
-  if (points && !m.instances.empty())
+  if (splat || m.instances.empty()) {
+  } else if (points)
     gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m.instances.size()));
-  else if (!m.instances.empty())
+  else
     gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.instances.size() / 4 * 6), GL_UNSIGNED_INT,
                     nullptr);
   if (samples > 0) {
@@ -517,6 +545,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   const std::size_t row = static_cast<std::size_t>(view.width) * 4;
   for (int y = 0; y < view.height; ++y)  // GL's rows run bottom-up
     std::memcpy(img.pixel(0, y), m.readback.data() + (view.height - 1 - y) * row, row);
+  if (splat) splat_discs(img, m.instances, cam.pixels_per_unit());
 
   // Overlays, on the CPU: text and the colour bar come out identical on every driver.
   const bool any_overlay = (style.colorbar && !overlay) || style.time_label ||

@@ -258,6 +258,24 @@ TEST(RenderStructure, ActiveOnlyByDefaultInactiveOnRequest) {
   EXPECT_TRUE(c[0] == c[1] && c[1] == c[2] && c[0] < 255) << "a neutral grey";
 }
 
+// Tiny 2D discs are splatted on the CPU (see renderer.cpp); both paths must draw the same.
+TEST(RenderStructure, CpuSplatsMatchGlDiscs) {
+  Snapshot tiny = empty_snapshot(2, 0, 0);
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      add(tiny, {2.1 * i + 0.37 * ((i * 7 + j * 3) % 5), 2.1 * j + 0.29 * ((i * 3 + j * 5) % 7), 0},
+          {0.03 * i, 0.01 * j, 0});
+  for (const Snapshot& s : {tiny, speed_gradient()}) {
+    Style gl_style = bare_style(), cpu_style = bare_style();
+    gl_style.splat_below_px = 0;
+    cpu_style.splat_below_px = 1e9;
+    const Image a = renderer().render(s, gl_style, small_view());
+    const Image b = renderer().render(s, cpu_style, small_view());
+    const auto c = compare_images(b, a);
+    EXPECT_TRUE(c.match()) << c.differing << " pixels differ, " << c.allowed << " allowed";
+  }
+}
+
 TEST(RenderErrors, RejectBadSizesStyleAndMissingData) {
   const Snapshot s = speed_gradient();
   auto throws = [&](Style st, View v) {
