@@ -8,5 +8,7 @@ void add_run_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_movie_command(CLI::App& app);
+void add_ensemble_command(CLI::App& app);
+void add_merge_command(CLI::App& app);
 
 }  // namespace gs::app

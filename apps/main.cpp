@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   gs::app::add_render_command(app);
   gs::app::add_bench_command(app);
   gs::app::add_movie_command(app);
+  gs::app::add_ensemble_command(app);
+  gs::app::add_merge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

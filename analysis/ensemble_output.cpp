@@ -1,0 +1,166 @@
+#include "analysis/ensemble_output.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/json.h"
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs {
+namespace {
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  auto tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw UserError(path.string() + ": cannot write");
+    f << text;
+    if (!f.flush()) throw UserError(path.string() + ": write failed");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+Table distributions(const EnsembleSums& sums) {
+  const double a = theory_alpha(sums.spec().physics);
+  Table out;
+  const std::vector<std::string> names = {
+      "t",        "bin",       "R",          "P_R",         "P_R_sem",        "x_R",
+      "f1",       "v",         "P_v",        "P_v_sem",     "x_v",            "f2",
+      "profile_density", "profile_density_sem", "profile_count", "profile_mean_speed",
+      "profile_mean_radial_velocity", "packing", "P_packing", "P_packing_sem"};
+  for (const auto& n : names) out.add_column(n, {});
+  for (const auto& s : sums.snapshots()) {
+    const Histogram pr = s.radius.mean(), pv = s.speed.mean(), pp = s.packing.mean();
+    const auto pr_se = s.radius.standard_error(), pv_se = s.speed.standard_error(),
+               pp_se = s.packing.standard_error();
+    const Histogram fr = scaled_radial_distribution(pr, s.t, a);
+    const Histogram fv = scaled_speed_distribution(pv, s.t, a);
+    const RadialProfile prof = s.profile.mean();
+    const auto prof_se = s.profile.density_standard_error();
+    for (std::size_t b = 0; b < pr.bins(); ++b) {
+      const std::vector<double> row = {
+          s.t,           double(b),          pr.centre(b),          pr.values[b],
+          pr_se[b],      fr.centre(b),       fr.values[b],          pv.centre(b),
+          pv.values[b],  pv_se[b],           fv.centre(b),          fv.values[b],
+          prof.density[b], prof_se[b],       double(prof.count[b]), prof.mean_speed[b],
+          prof.mean_radial_velocity[b],      pp.centre(b),          pp.values[b],
+          pp_se[b]};
+      out.add_row(row);
+    }
+  }
+  return out;
+}
+
+Table snapshot_scalars(const EnsembleSums& sums) {
+  Table out;
+  out.add_column("t", {});
+  for (const char* n : kSnapshotScalars) {
+    out.add_column(n, {});
+    out.add_column(std::string(n) + "_sem", {});
+  }
+  for (const auto& s : sums.snapshots()) {
+    const auto m = s.scalars.mean(), se = s.scalars.standard_error();
+    std::vector<double> row = {s.t};
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      row.push_back(m[k]);
+      row.push_back(se[k]);
+    }
+    out.add_row(row);
+  }
+  return out;
+}
+
+std::string crossover_json(const Crossover& c) {
+  return "{\"found\": " + std::string(c.found ? "true" : "false") +
+         ", \"time\": " + json_number(c.time) + ", \"note\": " + json_string(c.note) + "}";
+}
+
+}  // namespace
+
+EnsembleSpec held_spec(const EnsembleSums& sums) {
+  EnsembleSpec s = sums.spec();
+  if (!sums.indices().empty()) s.physics.realisation = sums.indices().front();
+  s.realisations = sums.count();
+  return s;
+}
+
+std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
+  const EnsembleSpec spec = held_spec(sums);
+  const auto& p = spec.physics;
+  std::ostringstream j;
+  j << "{\n";
+  j << "  \"version\": " << json_string(GRAINSHOCK_VERSION) << ",\n";
+  j << "  \"dim\": " << p.dim << ",\n";
+  j << "  \"particles\": " << p.particles << ",\n";
+  j << "  \"density\": " << json_number(p.density) << ",\n";
+  j << "  \"restitution\": " << json_number(p.restitution) << ",\n";
+  j << "  \"cutoff\": " << json_number(p.cutoff) << ",\n";
+  j << "  \"seed\": " << p.seed << ",\n";
+  j << "  \"t_max\": " << json_number(p.t_max) << ",\n";
+  j << "  \"t_max_paper\": " << json_number(p.paper_time(p.t_max)) << ",\n";
+  j << "  \"realisations\": " << sums.count() << ",\n";
+  j << "  \"realisation_indices\": [";
+  for (std::size_t k = 0; k < sums.indices().size(); ++k) j << (k ? ", " : "") << sums.indices()[k];
+  j << "],\n";
+  j << "  \"alpha_theory\": " << json_number(f.alpha_theory) << ",\n";
+  j << "  \"alpha_theory_rule\": "
+    << json_string(p.restitution < 1 ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1") << ",\n";
+  j << "  \"exponents\": [\n";
+  for (std::size_t k = 0; k < f.exponents.size(); ++k) {
+    const auto& e = f.exponents[k];
+    j << "    {\"quantity\": " << json_string(e.quantity) << ", \"column\": " << json_string(e.column)
+      << ", \"exponent\": " << json_number(e.fit.exponent)
+      << ", \"ci_lo\": " << json_number(e.fit.ci_lo) << ", \"ci_hi\": " << json_number(e.fit.ci_hi)
+      << ", \"confidence\": " << json_number(e.fit.confidence)
+      << ", \"standard_error\": " << json_number(e.fit.standard_error)
+      << ", \"theory\": " << json_number(e.theory)
+      << ", \"window\": [" << json_number(e.fit.window.t_lo) << ", " << json_number(e.fit.window.t_hi)
+      << "], \"points\": " << e.fit.points << ", \"alpha\": " << json_number(e.alpha)
+      << ", \"alpha_uncertainty\": " << json_number(e.alpha_uncertainty)
+      << ", \"note\": " << json_string(e.note) << "}" << (k + 1 < f.exponents.size() ? "," : "")
+      << "\n";
+  }
+  j << "  ],\n";
+  j << "  \"exponent_definition\": "
+    << json_string("least-squares slope of ln <y> vs ln t over the window (automatic: longest range "
+                   "where the local slope stays within +-0.05, after <N_t> >= 20); interval: 95% "
+                   "percentile bootstrap over realisations (1000 resamples)")
+    << ",\n";
+  j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
+  j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
+  j << "  \"crossover_definition\": "
+    << json_string("slope rule on <N_t>: t_c1 = time from which the local slope stays within 10% of "
+                   "alpha d; t_c2 = later time from which it stays outside that band")
+    << ",\n";
+  j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
+  j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";
+  j << "  \"collapse_note\": " << json_string(f.collapse_note) << ",\n";
+  j << "  \"anisotropy_last\": " << json_number(f.anisotropy) << ",\n";
+  j << "  \"anisotropy_last_sem\": " << json_number(f.anisotropy_sem) << ",\n";
+  j << "  \"packing_typical\": " << json_number(f.packing_typical) << ",\n";
+  j << "  \"packing_typical_sem\": " << json_number(f.packing_typical_sem) << ",\n";
+  j << "  \"packing_upper\": " << json_number(f.packing_upper) << ",\n";
+  j << "  \"packing_upper_sem\": " << json_number(f.packing_upper_sem) << ",\n";
+  j << "  \"packing_definition\": " << json_string(BandPacking::definition)
+    << ", \"packing_upper_definition\": "
+    << json_string("active-weighted 90% quantile of the band cells' packing fractions") << ",\n";
+  j << "  \"inner_outer_speed_ratio\": " << json_number(f.inner_outer_ratio) << ",\n";
+  j << "  \"inner_outer_speed_ratio_sem\": " << json_number(f.inner_outer_ratio_sem) << "\n";
+  j << "}\n";
+  return j.str();
+}
+
+void write_ensemble_outputs(const std::filesystem::path& dir, const EnsembleSums& sums,
+                            const EnsembleFits& fits) {
+  GS_CHECK(sums.count() >= 1);
+  write_text(dir / "ensemble.toml", spec_toml(held_spec(sums)));
+  write_csv(sums.timeseries(), dir / "timeseries_mean.csv");
+  write_csv(distributions(sums), dir / "distributions_mean.csv");
+  write_csv(snapshot_scalars(sums), dir / "snapshot_scalars_mean.csv");
+  write_text(dir / "summary.json", summary_json(sums, fits));
+}
+
+}  // namespace gs

@@ -1,0 +1,58 @@
+#pragma once
+// The running sums of an ensemble: every realisation's time series and snapshot observables
+// added into exact accumulators (analysis/ensemble.h), so that the result does not depend on
+// which thread or which cluster job ran which realisation, nor on the order of merging.
+//
+// The four curves the exponent fits bootstrap over (N_t, E_t, R_t, v_t) are also kept per
+// realisation, keyed by index: ~4 x (samples on the grid) doubles each, a few kB.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "analysis/ensemble.h"
+#include "analysis/realisation.h"
+
+namespace gs {
+
+// The time-series columns whose exponents are fitted, in the order of EnsembleSums::Curves.
+inline constexpr std::array<const char*, 4> kFittedColumns = {"active", "energy", "radius_rms",
+                                                               "speed_rms"};
+// The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
+inline constexpr std::array<const char*, 9> kSnapshotScalars = {
+    "packing_typical", "packing_upper", "packing_mean", "inner_correlation", "inner_outer_ratio",
+    "inner_speed", "outer_speed", "R_outside_fraction", "v_outside_fraction"};
+
+class EnsembleSums {
+ public:
+  using Curves = std::array<std::vector<double>, kFittedColumns.size()>;
+  struct SnapshotSums {
+    double t = 0;
+    HistogramAverage radius, speed, packing;
+    ProfileAverage profile;
+    MeanAccumulator scalars{kSnapshotScalars.size()};
+  };
+
+  explicit EnsembleSums(const EnsembleSpec& spec);
+  // UserError (naming `source`) if the realisation is held already or does not fit the spec.
+  void add(const Realisation& r, const std::string& source);
+  // UserError if the specs differ (spec_identity) or both hold a realisation.
+  void merge(const EnsembleSums& other);
+
+  const EnsembleSpec& spec() const { return spec_; }
+  std::uint64_t count() const { return series_.realisations(); }
+  const std::vector<std::uint64_t>& indices() const { return series_.indices(); }
+  // Grid columns t, t_paper, then c and c_sem per column. Needs count() >= 1.
+  Table timeseries() const { return series_.result(); }
+  const std::vector<SnapshotSums>& snapshots() const { return snaps_; }
+  const std::map<std::uint64_t, Curves>& curves() const { return curves_; }
+
+ private:
+  EnsembleSpec spec_;
+  EnsembleAverage series_;
+  std::vector<SnapshotSums> snaps_;
+  std::map<std::uint64_t, Curves> curves_;
+};
+
+}  // namespace gs

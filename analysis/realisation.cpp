@@ -1,0 +1,342 @@
+#include "analysis/realisation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "sim/engine.h"
+#include "sim/error.h"
+#include "sim/format.h"
+#include "sim/recorder.h"
+#include "sim/stop.h"
+
+namespace gs {
+namespace {
+
+constexpr double kRadiusRange = 5, kSpeedRange = 5;
+
+std::string times_text(const std::vector<double>& t) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < t.size(); ++i) s += (i ? ", " : "") + format_double(t[i]);
+  return s + "]";
+}
+
+// Histogram <-> columns of distributions.csv.
+void put_histogram(Table& rows, std::size_t first, const Histogram& h, const std::string& name) {
+  auto& lo = rows.column(name + "_lo");
+  auto& hi = rows.column(name + "_hi");
+  auto& p = rows.column("P_" + name);
+  for (std::size_t b = 0; b < h.bins(); ++b) {
+    lo[first + b] = h.edges[b];
+    hi[first + b] = h.edges[b + 1];
+    p[first + b] = h.values[b];
+  }
+}
+
+Histogram get_histogram(const Table& rows, std::size_t first, std::size_t bins,
+                        const std::string& name, double samples, double outside) {
+  Histogram h;
+  const auto& lo = rows.column(name + "_lo");
+  const auto& hi = rows.column(name + "_hi");
+  const auto& p = rows.column("P_" + name);
+  for (std::size_t b = 0; b < bins; ++b) {
+    h.edges.push_back(lo[first + b]);
+    h.values.push_back(p[first + b]);
+  }
+  h.edges.push_back(hi[first + bins - 1]);
+  h.samples = static_cast<std::uint64_t>(samples);
+  h.outside = static_cast<std::uint64_t>(outside);
+  return h;
+}
+
+const std::vector<std::string> kDistributionColumns = {
+    "t",          "bin",        "R_lo",          "R_hi",         "P_R",
+    "v_lo",       "v_hi",       "P_v",           "profile_count", "profile_density",
+    "profile_speed_sum", "profile_radial_velocity_sum", "packing_lo", "packing_hi", "P_packing"};
+
+const std::vector<std::string> kScalarColumns = {
+    "t",           "R_samples",      "R_outside",        "v_samples",      "v_outside",
+    "packing_samples", "packing_outside", "packing_typical", "packing_upper", "packing_mean",
+    "packing_cell_side", "inner_correlation", "inner_median_radius", "inner_speed", "outer_speed",
+    "inner_outer_ratio"};
+
+}  // namespace
+
+double theory_alpha(const PhysicsConfig& c) {
+  return c.restitution < 1 ? 1.0 / (c.dim + 1) : 2.0 / (c.dim + 2);
+}
+
+EnsembleSpec checked(EnsembleSpec spec) {
+  validate(spec.physics);
+  if (spec.physics.initial != Initial::Kick)
+    throw UserError("--initial: ensembles average kicked gases only (use run for thermal starts)");
+  if (spec.physics.dim < 2)
+    throw UserError("--dim: ensembles measure bands in 2 or 3 dimensions");
+  if (spec.realisations < 1) throw UserError("--realisations must be at least 1");
+  if (spec.per_decade < 1 || spec.per_decade > 1000)
+    throw UserError("--per-decade must be in [1, 1000]");
+  if (spec.bins < 2 || spec.bins > 100000) throw UserError("--bins must be in [2, 100000]");
+  const double T = spec.physics.t_max;
+  if (spec.snapshot_times.empty()) spec.snapshot_times = {T / 4, T / 2, T};
+  std::sort(spec.snapshot_times.begin(), spec.snapshot_times.end());
+  for (double t : spec.snapshot_times)
+    if (!(t > 0 && t <= T))
+      throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
+  spec.snapshot_times = merge_times(spec.snapshot_times, {});
+  return spec;
+}
+
+std::string spec_identity(const EnsembleSpec& spec) {
+  PhysicsConfig p = spec.physics;
+  p.realisation = 0;
+  std::string toml = to_toml(p);
+  // Drop the run comment and the realisation key: they say what is held, not what is simulated.
+  std::istringstream in(toml);
+  std::ostringstream out;
+  for (std::string line; std::getline(in, line);)
+    if (!line.starts_with("#") && !line.starts_with("realisation = ")) out << line << "\n";
+  out << "per-decade = " << spec.per_decade << "\n";
+  out << "snapshot-times = " << times_text(spec.snapshot_times) << "\n";
+  out << "bins = " << spec.bins << "\n";
+  return out.str();
+}
+
+std::string spec_toml(const EnsembleSpec& spec) {
+  std::ostringstream o;
+  o << "# grainshock ensemble; rerun with: grainshock ensemble --config ensemble.toml\n";
+  o << "# realisation = first realisation index; realisations = how many\n";
+  o << "realisation = " << spec.physics.realisation << "\n";
+  o << "realisations = " << spec.realisations << "\n";
+  o << spec_identity(spec);
+  return o.str();
+}
+
+EnsembleSpec read_spec(const std::filesystem::path& file) {
+  toml::table t;
+  try {
+    t = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw UserError(file.string() + ": malformed TOML at line " +
+                    std::to_string(e.source().begin.line));
+  } catch (const std::exception& e) {
+    throw UserError(file.string() + ": cannot read");
+  }
+  auto need = [&](const char* key) -> const toml::node& {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) throw UserError(file.string() + ": key '" + key + "' missing");
+    return *n;
+  };
+  auto num = [&](const char* key) {
+    const auto& n = need(key);
+    if (auto v = n.value<double>()) return *v;
+    throw UserError(file.string() + ": key '" + key + "' is not a number");
+  };
+  auto integer = [&](const char* key) {
+    const auto& n = need(key);
+    if (auto v = n.value<std::int64_t>()) return *v;
+    throw UserError(file.string() + ": key '" + key + "' is not an integer");
+  };
+  auto str = [&](const char* key) {
+    const auto& n = need(key);
+    if (auto v = n.value<std::string>()) return *v;
+    throw UserError(file.string() + ": key '" + key + "' is not a string");
+  };
+  EnsembleSpec s;
+  PhysicsConfig& p = s.physics;
+  p.dim = static_cast<int>(integer("dim"));
+  p.particles = integer("particles");
+  p.density = num("density");
+  p.restitution = num("restitution");
+  p.cutoff = num("cutoff");
+  p.speed = num("speed");
+  p.seed = static_cast<std::uint64_t>(integer("seed"));
+  p.realisation = static_cast<std::uint64_t>(integer("realisation"));
+  p.t_max = num("t-max");
+  const std::string initial = str("initial"), site = str("kick-site");
+  if (initial != to_string(Initial::Kick)) throw UserError(file.string() + ": initial must be kick");
+  p.initial = Initial::Kick;
+  if (site == to_string(KickSite::Centre)) p.kick_site = KickSite::Centre;
+  else if (site == to_string(KickSite::Random)) p.kick_site = KickSite::Random;
+  else throw UserError(file.string() + ": unknown kick-site '" + site + "'");
+  p.temperature = num("temperature");
+  p.lattice = num("lattice");
+  s.realisations = static_cast<std::uint64_t>(integer("realisations"));
+  s.per_decade = static_cast<int>(integer("per-decade"));
+  s.bins = static_cast<int>(integer("bins"));
+  const auto* arr = need("snapshot-times").as_array();
+  if (arr == nullptr) throw UserError(file.string() + ": key 'snapshot-times' is not an array");
+  for (auto&& el : *arr) {
+    auto v = el.value<double>();
+    if (!v) throw UserError(file.string() + ": snapshot-times holds a non-number");
+    s.snapshot_times.push_back(*v);
+  }
+  try {
+    return checked(s);
+  } catch (const UserError& e) {
+    throw UserError(file.string() + ": " + e.what());
+  }
+}
+
+Binning radius_binning(const EnsembleSpec& spec, double t) {
+  return {.bins = spec.bins, .lo = 0, .hi = kRadiusRange * std::pow(t, theory_alpha(spec.physics))};
+}
+
+Binning speed_binning(const EnsembleSpec& spec, double t) {
+  const double a = theory_alpha(spec.physics);
+  return {.bins = spec.bins, .lo = 0, .hi = kSpeedRange * spec.physics.speed * std::pow(t, a - 1)};
+}
+
+Binning packing_binning(const EnsembleSpec& spec) { return {.bins = spec.bins, .lo = 0, .hi = 1}; }
+
+std::vector<double> sample_times(const EnsembleSpec& spec) {
+  return merge_times(log_times(0.1, spec.physics.t_max, spec.per_decade), spec.snapshot_times);
+}
+
+SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
+  SnapshotMeasures m;
+  m.t = s.info.time;
+  m.radius = radial_distribution(s, radius_binning(spec, m.t));
+  m.speed = speed_distribution(s, speed_binning(spec, m.t));
+  m.profile = radial_profile(s, radius_binning(spec, m.t));
+  PackingOptions po;
+  po.binning = packing_binning(spec);
+  m.band = band_packing(s, po);
+  m.packing = m.band.distribution;
+  m.band.fraction.clear();
+  m.band.active.clear();
+  m.inner = inner_edge_speed(s);
+  return m;
+}
+
+bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisation& out,
+                          const SnapshotHook& on_snapshot) {
+  PhysicsConfig c = spec.physics;
+  c.realisation = index;
+  auto sim = make_simulation(c);
+  Recorder recorder(c);
+  out = Realisation{};
+  out.index = index;
+  out.timeseries.names = recorder.columns();
+  out.timeseries.columns.assign(recorder.columns().size(), {});
+  std::size_t next_snap = 0;
+  for (double t : sample_times(spec)) {
+    // Slices, so that a stop request is seen within a fraction of a second.
+    while (sim->time() < t) {
+      sim->run_until(std::min(t, sim->time() + std::max(1.0, 0.05 * sim->time())));
+      if (stop_requested()) return false;
+    }
+    out.timeseries.add_row(recorder.row(*sim));
+    if (next_snap < spec.snapshot_times.size() &&
+        std::abs(spec.snapshot_times[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {
+      const Snapshot s = sim->snapshot();
+      out.snapshots.push_back(measure_snapshot(spec, s));
+      out.snapshots.back().t = spec.snapshot_times[next_snap];
+      if (on_snapshot) on_snapshot(index, s);
+      ++next_snap;
+    }
+  }
+  GS_CHECK(next_snap == spec.snapshot_times.size());
+  return true;
+}
+
+void write_realisation(const std::filesystem::path& dir, const Realisation& r) {
+  std::filesystem::create_directories(dir);
+  write_csv(r.timeseries, dir / "timeseries.csv");
+  Table dist, scalars;
+  std::size_t rows = 0;
+  for (const auto& m : r.snapshots) rows += m.radius.bins();
+  for (const auto& n : kDistributionColumns) dist.add_column(n, std::vector<double>(rows));
+  for (const auto& n : kScalarColumns) scalars.add_column(n, {});
+  std::size_t first = 0;
+  for (const auto& m : r.snapshots) {
+    const std::size_t bins = m.radius.bins();
+    GS_CHECK(m.speed.bins() == bins && m.packing.bins() == bins && m.profile.count.size() == bins);
+    for (std::size_t b = 0; b < bins; ++b) {
+      dist.column("t")[first + b] = m.t;
+      dist.column("bin")[first + b] = double(b);
+      dist.column("profile_count")[first + b] = double(m.profile.count[b]);
+      dist.column("profile_density")[first + b] = m.profile.density[b];
+      dist.column("profile_speed_sum")[first + b] = m.profile.speed_sum[b];
+      dist.column("profile_radial_velocity_sum")[first + b] = m.profile.radial_velocity_sum[b];
+    }
+    put_histogram(dist, first, m.radius, "R");
+    put_histogram(dist, first, m.speed, "v");
+    put_histogram(dist, first, m.packing, "packing");
+    first += bins;
+    const std::vector<double> row = {
+        m.t,
+        double(m.radius.samples),
+        double(m.radius.outside),
+        double(m.speed.samples),
+        double(m.speed.outside),
+        double(m.packing.samples),
+        double(m.packing.outside),
+        m.band.typical,
+        m.band.upper,
+        m.band.mean,
+        m.band.cell_side,
+        m.inner.correlation,
+        m.inner.median_radius,
+        m.inner.inner_speed,
+        m.inner.outer_speed,
+        m.inner.ratio};
+    scalars.add_row(row);
+  }
+  write_csv(dist, dir / "distributions.csv");
+  write_csv(scalars, dir / "snapshot_scalars.csv");
+}
+
+Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index) {
+  Realisation r;
+  r.index = index;
+  r.timeseries = read_csv(dir / "timeseries.csv");
+  const Table dist = read_csv(dir / "distributions.csv");
+  const Table sc = read_csv(dir / "snapshot_scalars.csv");
+  for (const auto& n : kDistributionColumns) (void)dist.column(n);  // UserError if missing
+  for (const auto& n : kScalarColumns) (void)sc.column(n);
+  const auto& t = dist.column("t");
+  std::size_t first = 0;
+  for (std::size_t k = 0; k < sc.rows(); ++k) {
+    const double tk = sc.column("t")[k];
+    std::size_t bins = 0;
+    while (first + bins < t.size() && t[first + bins] == tk) ++bins;
+    if (bins < 1)
+      throw UserError((dir / "distributions.csv").string() + ": no rows for t = " + format_number(tk));
+    SnapshotMeasures m;
+    m.t = tk;
+    auto s = [&](const char* name) { return sc.column(name)[k]; };
+    m.radius = get_histogram(dist, first, bins, "R", s("R_samples"), s("R_outside"));
+    m.speed = get_histogram(dist, first, bins, "v", s("v_samples"), s("v_outside"));
+    m.packing = get_histogram(dist, first, bins, "packing", s("packing_samples"), s("packing_outside"));
+    m.profile.edges = m.radius.edges;
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double n = dist.column("profile_count")[first + b];
+      const double ss = dist.column("profile_speed_sum")[first + b];
+      const double rs = dist.column("profile_radial_velocity_sum")[first + b];
+      m.profile.count.push_back(static_cast<std::uint64_t>(n));
+      m.profile.density.push_back(dist.column("profile_density")[first + b]);
+      m.profile.speed_sum.push_back(ss);
+      m.profile.radial_velocity_sum.push_back(rs);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      m.profile.mean_speed.push_back(n > 0 ? ss / n : nan);
+      m.profile.mean_radial_velocity.push_back(n > 0 ? rs / n : nan);
+    }
+    m.band.typical = s("packing_typical");
+    m.band.upper = s("packing_upper");
+    m.band.mean = s("packing_mean");
+    m.band.cell_side = s("packing_cell_side");
+    m.inner.correlation = s("inner_correlation");
+    m.inner.median_radius = s("inner_median_radius");
+    m.inner.inner_speed = s("inner_speed");
+    m.inner.outer_speed = s("outer_speed");
+    m.inner.ratio = s("inner_outer_ratio");
+    r.snapshots.push_back(std::move(m));
+    first += bins;
+  }
+  if (first != t.size())
+    throw UserError((dir / "distributions.csv").string() + ": rows do not match snapshot_scalars.csv");
+  return r;
+}
+
+}  // namespace gs

@@ -1,0 +1,86 @@
+#pragma once
+// What one realisation of an ensemble contributes: its time series on the shared logarithmic
+// grid and, at the snapshot times, P(R,t), P(v,t), the radial profile and the band packing
+// (Jabeen, Rajesh, Ray, EPL 2010, Figs. 2-5). Everything is on binnings fixed by the spec alone,
+// so that realisations run anywhere (threads, cluster jobs) can be averaged bin by bin.
+//
+// A realisation can be written to a folder and read back exactly (shortest round-trip numbers),
+// which is what lets `grainshock merge` reproduce the one-shot ensemble to the last bit.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/table.h"
+#include "sim/config.h"
+#include "sim/histogram.h"
+#include "sim/observables.h"
+#include "sim/snapshot.h"
+
+namespace gs {
+
+// Everything that decides the numbers of an ensemble apart from which realisations it holds.
+struct EnsembleSpec {
+  PhysicsConfig physics;  // physics.realisation: the first realisation index
+  std::uint64_t realisations = 8;
+  int per_decade = 20;
+  std::vector<double> snapshot_times;  // empty: t_max / 4, t_max / 2, t_max
+  int bins = 60;
+};
+
+// The scaling exponent of the paper for this physics: 1/(d+1) for r < 1, 2/(d+2) for r = 1.
+double theory_alpha(const PhysicsConfig& c);
+
+// Throws UserError naming the flag for impossible specs; fills the default snapshot times.
+EnsembleSpec checked(EnsembleSpec spec);
+
+// ensemble.toml: the physics of to_toml() plus the ensemble keys, readable back with --config.
+std::string spec_toml(const EnsembleSpec& spec);
+// The same text without the keys that say which realisations are held, for comparing the
+// physics of folders to merge.
+std::string spec_identity(const EnsembleSpec& spec);
+// Parses ensemble.toml (UserError naming the file).
+EnsembleSpec read_spec(const std::filesystem::path& file);
+
+// Fixed binnings of the snapshot observables at time t: [0, 5 t^alpha] for distances and
+// [0, 5 t^(alpha-1)] for speeds, the theory's scales with room for the tails (R_rms ~ 2 t^alpha
+// and v_rms ~ 0.6 t^(alpha-1) in 2D for r = 0.1, measured); samples beyond are counted as outside.
+Binning radius_binning(const EnsembleSpec& spec, double t);
+Binning speed_binning(const EnsembleSpec& spec, double t);
+Binning packing_binning(const EnsembleSpec& spec);
+
+struct SnapshotMeasures {
+  double t = 0;
+  Histogram radius, speed;  // P(R,t), P(v,t)
+  RadialProfile profile;    // on the radius binning
+  Histogram packing;        // distribution of the packing fraction of band cells
+  BandPacking band;         // typical/upper/mean (fraction lists are not kept)
+  InnerEdge inner;
+};
+
+struct Realisation {
+  std::uint64_t index = 0;
+  Table timeseries;  // the columns of Recorder on the shared grid
+  std::vector<SnapshotMeasures> snapshots;  // one per spec snapshot time
+};
+
+// Sample times of the shared grid: log_times(0.1, t_max, per_decade) with the snapshot times.
+std::vector<double> sample_times(const EnsembleSpec& spec);
+
+// Measures one snapshot on the spec's binnings.
+SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s);
+
+// Runs realisation `index` of the spec. `on_snapshot` (optional) sees each snapshot before it is
+// dropped (figures keep some for the renderer). Returns false if a stop was requested (the
+// realisation is then incomplete and must not be used).
+using SnapshotHook = std::function<void(std::uint64_t index, const Snapshot&)>;
+bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisation& out,
+                          const SnapshotHook& on_snapshot = {});
+
+// Folder layout: timeseries.csv, distributions.csv (one row per snapshot time and bin),
+// snapshot_scalars.csv (one row per snapshot time).
+void write_realisation(const std::filesystem::path& dir, const Realisation& r);
+Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index);
+
+}  // namespace gs
