@@ -44,7 +44,7 @@ struct MovieCommandOptions {
   std::string colour_by = "speed", scale = "auto", colormap = "viridis", background = "dark";
   std::vector<double> range;
   bool show_inactive = false;
-  double slab = 0;
+  double slab = 6;  // 3D: a cut through the shell shows the band, the whole shell only its skin
   double azimuth = 30, elevation = 20;
   bool keep_frames = false;
   std::string backend = "auto";
