@@ -27,11 +27,20 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
     Vec<D> x;
     for (int k = 0; k < D; ++k) x[k] = rng.uniform() * box;
     const IVec<D> c = grid.coords_of(x);
-    bool free = true;
+    // Fetch the first occupant of every cell before testing any, so that the cache misses of
+    // this random walk through memory overlap (as in the engine's neighbour search).
+    std::int32_t first[27];
+    int count = 0;
     grid.for_each_neighbour(c, [&](std::int32_t cell) {
-      for (std::int32_t j = head[cell]; free && j >= 0; j = next[j])
-        if (grid.minimum_image(pos[j] - x).squaredNorm() < 1.0) free = false;
+      const std::int32_t h = head[cell];
+      if (h < 0) return;
+      __builtin_prefetch(&pos[h]);
+      first[count++] = h;
     });
+    bool free = true;
+    for (int k = 0; k < count && free; ++k)
+      for (std::int32_t j = first[k]; free && j >= 0; j = next[j])
+        if (grid.minimum_image(pos[j] - x).squaredNorm() < 1.0) free = false;
     if (!free) continue;
     const auto id = static_cast<std::int32_t>(pos.size());
     const std::int32_t cell = grid.index(c);
