@@ -1,6 +1,8 @@
 // `grainshock run`: one realisation into a run folder.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +11,9 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/progress.h"
+#include "render/field.h"
+#include "render/png.h"
+#include "render/renderer.h"
 #include "sim/config.h"
 #include "sim/engine.h"
 #include "sim/error.h"
@@ -28,7 +33,26 @@ struct RunOptions {
   int per_decade = 20;
   double sample_every = 0;  // 0: logarithmic grid only
   std::vector<double> snapshot_times;
+  bool png = false;              // a PNG of every snapshot, and the Fig. 1(a) overlay
+  bool compare_elastic = false;  // the Fig. 1(b) frame: the same gas with r = 1
+  int width = 1920, height = 1080;
 };
+
+// Fig. 1 of the paper, in its time unit 1/(v0 n^(1/d)): r = 0.1 at t = 5000, 10000, 20000 and
+// 50000 (a), and r = 1 at t = 25000 (b).
+constexpr double kFig1Times[] = {5000, 10000, 20000, 50000};
+constexpr double kFig1ElasticTime = 25000;
+
+// `grainshock run` with no flags: the paper's Fig. 1 job.
+RunOptions demo_options() {
+  RunOptions o;
+  const double to_sim = 1 / o.physics.paper_time(1.0);
+  o.physics.t_max = kFig1Times[3] * to_sim;
+  for (double t : kFig1Times) o.snapshot_times.push_back(t * to_sim);
+  o.png = true;
+  o.compare_elastic = true;
+  return o;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -73,11 +97,76 @@ std::string summary_json(const RunOptions& o, const Simulation& sim, double setu
   return j.str();
 }
 
+// One colour range for all pictures of a run, so that a colour means one speed in every frame:
+// the union of the frames' robust (1st-99th percentile) ranges.
+std::pair<double, double> common_range(const std::vector<Snapshot>& snaps,
+                                       const render::Style& style) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& s : snaps) {
+    if (std::find(s.active.begin(), s.active.end(), 1) == s.active.end()) continue;
+    const auto r = render::auto_range(render::field_values(s, style.field), s.active, style.scale,
+                                      style.percentile_low, style.percentile_high);
+    lo = std::min(lo, r.first);
+    hi = std::max(hi, r.second);
+  }
+  if (!(lo < hi)) return {0.0, 1.0};
+  return {lo, hi};
+}
+
+std::string png_name(const std::string& stem, double t) {
+  return stem + "t_" + format_number(t) + ".png";
+}
+
+// Fig. 1-style pictures: each snapshot coloured by speed on a shared scale, and (with two or
+// more) the overlay of all times, one colour per time, as in Fig. 1(a).
+void write_pictures(const std::filesystem::path& dir, const std::vector<Snapshot>& snaps,
+                    const RunOptions& o) {
+  std::filesystem::create_directories(dir / "frames");
+  render::Renderer renderer;
+  render::Style style;
+  style.scale = render::Scale::Log;  // speeds in the band span decades
+  style.range = common_range(snaps, style);
+  render::View view;
+  view.width = o.width;
+  view.height = o.height;
+  if (o.physics.dim == 3) view.slab = 6;  // a cut through the shell shows the band itself
+  for (const auto& s : snaps)
+    render::write_png((dir / "frames" / png_name("", s.info.time)).string(),
+                      renderer.render(s, style, view), render::png_text(s.info, s.size()));
+  if (snaps.size() < 2) return;
+  std::vector<const Snapshot*> all;
+  for (const auto& s : snaps) all.push_back(&s);
+  render::write_png((dir / "frames" / "overlay.png").string(), renderer.render(all, style, view),
+                    render::png_text(snaps.back().info, snaps.back().size()));
+}
+
+// Fig. 1(b): the same gas, kicked the same way, with elastic collisions, at half the final time.
+void write_elastic_comparison(const std::filesystem::path& dir, const RunOptions& o) {
+  PhysicsConfig c = o.physics;
+  c.restitution = 1.0;
+  c.t_max = 0.5 * o.physics.t_max;
+  if (!o.quiet)
+    std::fprintf(stderr, "grainshock: elastic comparison (r = 1) to t = %g\n", c.t_max);
+  auto sim = make_simulation(c);
+  sim->run_until(c.t_max);
+  const Snapshot s = sim->snapshot();
+  write_xyz((dir / "snapshots" / ("elastic_" + snapshot_name(c.t_max))).string(), s);
+  render::Renderer renderer;
+  render::Style style;
+  render::View view;
+  view.width = o.width;
+  view.height = o.height;
+  if (c.dim == 3) view.slab = 6;
+  render::write_png((dir / "frames" / png_name("elastic_", c.t_max)).string(),
+                    renderer.render(s, style, view), render::png_text(s.info, s.size()));
+}
+
 int run(const RunOptions& o) {
   validate(o.physics);
   for (double t : o.snapshot_times)
     if (!(t > 0 && t <= o.physics.t_max))
       throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
+  if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
   const auto dir = prepare_output_dir(o.out, o.force);
   std::filesystem::create_directories(dir / "snapshots");
   write_file_atomic(dir / "run.toml", to_toml(o.physics));
@@ -103,6 +192,7 @@ int run(const RunOptions& o) {
   const auto t1 = std::chrono::steady_clock::now();
   std::size_t next_snap = 0;
   bool interrupted = false;
+  std::vector<Snapshot> kept;  // for the pictures
   for (double t : times) {
     // Advance in slices so that a stop request is seen within a fraction of a second.
     while (sim->time() < t && !interrupted) {
@@ -115,7 +205,9 @@ int run(const RunOptions& o) {
     for (std::size_t k = 0; k < row.size(); ++k) csv << (k ? "," : "") << format_number(row[k]);
     csv << "\n" << std::flush;
     if (next_snap < snaps.size() && std::abs(snaps[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {
-      write_xyz((dir / "snapshots" / snapshot_name(t)).string(), sim->snapshot());
+      Snapshot snap = sim->snapshot();
+      write_xyz((dir / "snapshots" / snapshot_name(t)).string(), snap);
+      if (o.png) kept.push_back(std::move(snap));
       ++next_snap;
     }
     char what[160];
@@ -130,6 +222,8 @@ int run(const RunOptions& o) {
     write_xyz((dir / "snapshots" / snapshot_name(sim->time())).string(), sim->snapshot());
   }
   write_file_atomic(dir / "summary.json", summary_json(o, *sim, setup_s, run_s, interrupted));
+  if (!interrupted && o.png) write_pictures(dir, kept, o);
+  if (!interrupted && o.compare_elastic) write_elastic_comparison(dir, o);
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s\n",
                  interrupted ? "interrupted" : "finished", to_string(o.physics.initial),
@@ -155,7 +249,21 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   sub->add_option("--snapshot-times", opt->snapshot_times, "Write snapshots at these times")
       ->delimiter(',');
-  sub->callback([opt] {
+  sub->add_flag("--png", opt->png,
+                "Draw every snapshot into frames/*.png (colour = speed) and overlay them all");
+  sub->add_flag("--compare-elastic", opt->compare_elastic,
+                "Also run the same kick with r = 1 to half of t-max, like the paper's Fig. 1(b)");
+  sub->add_option("--width", opt->width, "Width of the pictures in pixels")->capture_default_str();
+  sub->add_option("--height", opt->height, "Height of the pictures in pixels")
+      ->capture_default_str();
+  sub->footer(
+      "With no flags at all, runs the paper's Fig. 1 job: 2.5e5 discs, r = 0.1, snapshots and "
+      "pictures at paper times 5000, 10000, 20000, 50000, their overlay, and the elastic "
+      "comparison, into grainshock-run/.");
+  sub->callback([opt, sub] {
+    bool any_flag = false;
+    for (const CLI::Option* option : sub->get_options()) any_flag |= option->count() > 0;
+    if (!any_flag) *opt = demo_options();
     const int rc = run(*opt);
     if (rc != 0) std::exit(rc);
   });

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "render/png.h"
 #include "sim/xyz.h"
 #include "tests/apps/cli_test_util.h"
 
@@ -34,6 +35,29 @@ TEST(CliRun, WritesTheRunFolder) {
   EXPECT_EQ(s.size(), 3000u);
   EXPECT_EQ(s.info.dim, 2);
   EXPECT_DOUBLE_EQ(s.info.time, 300.0);
+}
+
+TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
+  const auto dir = scratch_dir("png");
+  const auto r = grainshock("run " + kSmall +
+                            " --snapshot-times 100,200 --png --compare-elastic --width 640 "
+                            "--height 360 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"frames/t_100.png", "frames/t_200.png", "frames/t_300.png",
+                        "frames/overlay.png", "frames/elastic_t_150.png",
+                        "snapshots/elastic_t_150.xyz"}) {
+    ASSERT_TRUE(fs::exists(dir / f)) << f;
+    if (fs::path(f).extension() != ".png") continue;
+    const render::Image img = render::read_png((dir / f).string());
+    EXPECT_EQ(img.width, 640) << f;
+    EXPECT_EQ(img.height, 360) << f;
+  }
+  // The elastic gas moves the same kick's energy without loss.
+  const Snapshot elastic = read_xyz((dir / "snapshots/elastic_t_150.xyz").string());
+  double energy = 0;
+  for (const auto& v : elastic.velocity) energy += 0.5 * v.squaredNorm();
+  EXPECT_NEAR(energy, 0.5, 1e-12);
+  EXPECT_EQ(elastic.info.restitution.value_or(-1), 1.0);
 }
 
 TEST(CliRun, SameConfigAndSeedGiveIdenticalBytes) {
@@ -83,6 +107,8 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --initial warm", "--initial"},
       {"run --lattice 0.5 --dim 1", "--lattice"},
       {"run --particles 100 --t-max 1", "not empty"},
+      {"run --png --width 0", "image size 0x1080"},
+      {"run --snapshot-times 5,1e9", "--snapshot-times"},
   };
   for (const auto& [args, names] : cases) {
     const auto r = grainshock(args + out);
