@@ -1,375 +1,78 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
-// DIR/movie.mp4, with no intermediate files.
-//
-// A colour must mean one speed throughout and a following camera must never lose the front, so
-// both need the whole run ahead of time. Runs are reproducible from (config, seed), so a first,
-// picture-less pass over the same trajectory finds the colour range and the camera path; the
-// second pass renders. The first pass is skipped when neither is needed (--range with
-// --camera fixed).
+// DIR/movie.mp4 beside run.toml (see apps/front_movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <numbers>
+#include <cstdlib>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
-#include "apps/progress.h"
-#include "render/camera.h"
-#include "render/field.h"
-#include "render/movie_writer.h"
-#include "render/png.h"
-#include "render/renderer.h"
+#include "apps/front_movie.h"
 #include "sim/config.h"
-#include "sim/engine.h"
-#include "sim/error.h"
-#include "sim/format.h"
 #include "sim/stop.h"
 
 namespace gs::app {
-namespace {
-
-struct MovieCommandOptions {
-  PhysicsConfig physics;
-  std::string out = "grainshock-movie";
-  bool force = false;
-  bool quiet = false;
-  int frames = 240;
-  std::string spacing = "log";
-  double t_start = 1;  // first frame of a logarithmic spacing
-  render::MovieOptions movie{.width = 1280, .height = 720};
-  std::string camera = "follow";
-  std::string colour_by = "speed", scale = "auto", colormap = "viridis", background = "dark";
-  std::vector<double> range;
-  bool show_inactive = false;
-  double slab = 6;  // 3D: a cut through the shell shows the band, the whole shell only its skin
-  double azimuth = 30, elevation = 20;
-  bool keep_frames = false;
-  std::string backend = "auto";
-};
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::vector<double> frame_times(const MovieCommandOptions& o) {
-  const int n = o.frames;
-  const double t_max = o.physics.t_max;
-  if (n < 1) throw UserError("--frames must be at least 1 (got " + std::to_string(n) + ")");
-  // Bounded before anything is allocated: a million frames is a nine-hour movie at 30 fps.
-  if (n > 1000000)
-    throw UserError("--frames " + std::to_string(n) + ": too many frames (at most 1000000)");
-  std::vector<double> t(n);
-  if (o.spacing == "lin") {
-    for (int k = 0; k < n; ++k) t[k] = t_max * (k + 1) / n;
-  } else if (o.spacing == "log") {
-    if (!(o.t_start > 0 && o.t_start < t_max))
-      throw UserError("--t-start " + format_number(o.t_start) + " must be in (0, --t-max " +
-                      format_number(t_max) + ") for --frame-spacing log");
-    for (int k = 0; k < n; ++k)
-      t[k] = n == 1 ? t_max : o.t_start * std::pow(t_max / o.t_start, double(k) / (n - 1));
-    t.back() = t_max;
-  } else {
-    throw UserError("unknown --frame-spacing '" + o.spacing + "' (use lin or log)");
-  }
-  // Frames closer than the clock can tell apart would repeat the same picture.
-  for (int k = 1; k < n; ++k)
-    if (!(t[k] - t[k - 1] > 1e-9 * t[k]))
-      throw UserError("--frames " + std::to_string(n) + ": more frames than the run can give (" +
-                      format_number(t[k - 1]) + " and " + format_number(t[k]) +
-                      " are not distinct times); use fewer frames or a longer --t-max");
-  return t;
-}
-
-// Advances to each frame time in slices that depend only on the times, so that both passes see
-// the same trajectory, and a stop request is noticed within a fraction of a second. Returns
-// false if stopped.
-template <class Visit>
-bool for_each_frame(Simulation& sim, const std::vector<double>& times, Progress& progress,
-                    const char* pass, Visit visit) {
-  const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    while (sim.time() < times[k]) {
-      sim.run_until(std::min(times[k], sim.time() + std::max(1.0, 0.01 * sim.time())));
-      if (stop_requested()) return false;
-    }
-    visit(k);
-    char what[160];
-    std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g, %.3g events/s", pass, k + 1,
-                  times.size(), times[k],
-                  double(sim.stats().events) / std::max(1e-9, seconds_since(t0)));
-    progress.update(double(k + 1) / times.size(), what);
-    if (stop_requested()) return false;
-  }
-  return true;
-}
-
-// What the first pass learns about one frame: the colour range of its particles, where the
-// front is (unwrapped), and the box the renderer's fitted framing will use.
-struct FrameScan {
-  bool any_active = false;
-  std::pair<double, double> range{0, 1};
-  Eigen::AlignedBox3d front;  // active particles, else the moving ones (the kicked particle)
-  double radius = 0;          // of the sphere about front.center() holding the same particles
-  Eigen::AlignedBox3d fit;    // the renderer's rule: active particles, else all
-};
-
-FrameScan scan(const Snapshot& s, const render::Style& style) {
-  FrameScan f;
-  f.any_active = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
-  auto in_front = [&](std::size_t i) {
-    return f.any_active ? s.active[i] != 0 : s.has_velocity() && s.velocity[i].squaredNorm() > 0;
-  };
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (in_front(i)) f.front.extend(s.position[i]);
-    if (s.active[i] || !f.any_active) f.fit.extend(s.position[i]);
-  }
-  if (f.front.isEmpty()) f.front.extend(Eigen::Vector3d::Constant(s.info.box / 2));
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
-  if (f.any_active) {
-    const auto values = render::field_values(s, style.field);
-    f.range = render::auto_range(values, s.active, style.scale, style.percentile_low,
-                                 style.percentile_high);
-  }
-  return f;
-}
-
-// The union of the frames' robust ranges: no frame's bulk is clamped, one colour is one value.
-std::pair<double, double> fixed_range(const std::vector<FrameScan>& frames, render::Scale scale) {
-  double lo = INFINITY, hi = -INFINITY;
-  for (const auto& f : frames)
-    if (f.any_active) lo = std::min(lo, f.range.first), hi = std::max(hi, f.range.second);
-  if (!(lo < hi)) return scale == render::Scale::Log ? std::pair{0.1, 1.0} : std::pair{0.0, 1.0};
-  return {lo, hi};
-}
-
-// A following camera: centres are a moving average of the front's centre; the visible size is
-// the running maximum of what each frame needs, averaged over the frames ahead. The running
-// maximum never shrinks and the average ahead is never below it, so the front always fits and
-// the zoom only ever eases outward.
-struct Shot {
-  Eigen::Vector3d centre;
-  double half = 1;  // 2D: half the visible width; 3D: radius of the sphere to frame
-};
-
-std::vector<Shot> camera_path(const std::vector<FrameScan>& frames, int dim, double aspect,
-                              double margin, int window) {
-  const int n = static_cast<int>(frames.size());
-  std::vector<Eigen::Vector3d> raw(n);
-  for (int k = 0; k < n; ++k) raw[k] = frames[k].front.center();
-  std::vector<Shot> shots(n);
-  for (int k = 0; k < n; ++k) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    const int a = std::max(0, k - window), b = std::min(n - 1, k + window);
-    for (int j = a; j <= b; ++j) c += raw[j];
-    shots[k].centre = c / (b - a + 1);
-  }
-  // At least 12 diameters across the shorter side, so the first collisions are not a blur.
-  const double min_half = dim == 3 ? 6 : 6 * std::max(1.0, aspect);
-  std::vector<double> need(n);
-  for (int k = 0; k < n; ++k) {
-    const auto& box = frames[k].front;
-    const Eigen::Vector3d c = shots[k].centre;
-    const Eigen::Vector3d reach =
-        (box.max() - c).cwiseMax(c - box.min()) + Eigen::Vector3d::Constant(0.5);
-    const double pad = 1 + margin;
-    const double sphere = frames[k].radius + (box.center() - c).norm() + 0.5;
-    double h = dim == 3 ? sphere * pad : std::max(reach.x() * pad, reach.y() * pad * aspect);
-    need[k] = std::max(h, min_half);
-  }
-  for (int k = 1; k < n; ++k) need[k] = std::max(need[k], need[k - 1]);
-  for (int k = 0; k < n; ++k) {
-    const int b = std::min(n - 1, k + window);
-    double sum = 0;
-    for (int j = k; j <= b; ++j) sum += need[j];
-    shots[k].half = sum / (b - k + 1);
-  }
-  return shots;
-}
-
-// Points the renderer's view at a shot. 2D: the zoom that turns the renderer's fitted framing of
-// this frame into the shot's width; 3D: an explicit camera distance.
-void aim(render::View& view, const Shot& shot, const Snapshot& s, const FrameScan& f) {
-  view.centre = shot.centre;
-  if (s.info.dim == 3) {
-    const double tan_y = std::tan(view.fov * std::numbers::pi / 360);
-    const double tan_x = tan_y * view.width / view.height;
-    view.distance = shot.half / std::sin(std::atan(std::min(tan_x, tan_y)));
-    view.zoom = 1;
-    return;
-  }
-  render::View fitted = view;
-  fitted.zoom = 1;
-  double r_max = 0;
-  for (double r : s.radius) r_max = std::max(r_max, r);
-  const render::Camera base = render::make_camera_2d(f.fit, r_max, fitted);
-  view.zoom = base.half_w / shot.half;
-}
-
-int run(const MovieCommandOptions& o) {
-  // Everything the user typed is checked before the folder is made or anything runs.
-  validate(o.physics);
-  const std::vector<double> times = frame_times(o);
-  render::Style style;
-  style.colormap = o.colormap;
-  style.field = render::parse_field(o.colour_by);
-  style.background = render::parse_background(o.background);
-  if (o.scale == "auto")
-    style.scale = style.field == render::Field::RadialVelocity ? render::Scale::Linear
-                                                                : render::Scale::Log;
-  else if (o.scale == "lin" || o.scale == "log")
-    style.scale = o.scale == "log" ? render::Scale::Log : render::Scale::Linear;
-  else
-    throw UserError("unknown --scale '" + o.scale + "' (use auto, lin or log)");
-  if (!o.range.empty()) style.range = std::pair{o.range[0], o.range[1]};
-  style.show_inactive = o.show_inactive;
-  render::check_style(style);
-  render::check_size(o.movie.width, o.movie.height, 16384);
-  render::View view;
-  view.width = o.movie.width;
-  view.height = o.movie.height;
-  view.slab = o.slab;
-  view.azimuth = o.azimuth;
-  view.elevation = o.elevation;
-  const bool follow = o.camera == "follow";
-  if (!follow && o.camera != "fixed")
-    throw UserError("unknown --camera '" + o.camera + "' (use follow or fixed)");
-  view.framing = follow ? render::Framing::Fit : render::Framing::Box;
-  if (o.slab < 0) throw UserError("--slab must be >= 0");
-  const auto backend = render::parse_backend(o.backend);
-  render::check_movie_options(o.movie);
-
-  const auto dir = prepare_output_dir(o.out, o.force);
-  write_file_atomic(dir / "run.toml", to_toml(o.physics));
-  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
-  // Opened now so that a bad codec or an unwritable folder is reported before any work.
-  render::MovieWriter movie(dir / "movie.mp4", o.movie);
-  render::Renderer renderer(backend);
-  install_stop_handlers();
-
-  std::vector<FrameScan> scans;
-  std::vector<Shot> shots;
-  bool stopped = false;
-  if (!style.range || follow) {
-    auto sim = make_simulation(o.physics);
-    Progress progress(o.quiet);
-    scans.reserve(times.size());
-    stopped = !for_each_frame(*sim, times, progress, "pass 1 of 2 (range, camera)",
-                              [&](std::size_t) { scans.push_back(scan(sim->snapshot(), style)); });
-    progress.done();
-    if (!stopped) {
-      if (!style.range) style.range = fixed_range(scans, style.scale);
-      if (follow)
-        shots = camera_path(scans, o.physics.dim, double(view.width) / view.height, view.margin,
-                            std::max(1, static_cast<int>(o.movie.fps / 2)));
-    }
-  }
-
-  double sim_s = 0, render_s = 0, encode_s = 0, png_s = 0;
-  if (!stopped) {
-    auto sim = make_simulation(o.physics);
-    Progress progress(o.quiet);
-    auto clock = std::chrono::steady_clock::now();
-    stopped = !for_each_frame(*sim, times, progress, shots.empty() ? "movie" : "pass 2 of 2 (movie)",
-                              [&](std::size_t k) {
-      sim_s += seconds_since(clock);
-      auto t0 = std::chrono::steady_clock::now();
-      const Snapshot snap = sim->snapshot();
-      if (follow) aim(view, shots[k], snap, scans[k]);
-      render::Image img = renderer.render(snap, style, view);
-      render_s += seconds_since(t0);
-      if (o.keep_frames) {
-        t0 = std::chrono::steady_clock::now();
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05zu.png", k);
-        render::write_png((dir / "frames" / name).string(), img,
-                          render::png_text(snap.info, snap.size()));
-        png_s += seconds_since(t0);
-      }
-      t0 = std::chrono::steady_clock::now();
-      movie.add(std::move(img));
-      encode_s += seconds_since(t0);
-      clock = std::chrono::steady_clock::now();
-    });
-    progress.done();
-  }
-
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto written = movie.frames_added();
-  if (written > 0) movie.finish();
-  else movie.discard();  // a movie without a frame would only pretend to be one
-  encode_s += seconds_since(t0);
-  if (!o.quiet) {
-    if (written > 0) {
-      char pngs[48] = "";
-      if (o.keep_frames) std::snprintf(pngs, sizeof pngs, ", write PNGs %.3g s", png_s);
-      std::fprintf(stderr,
-                   "grainshock: %s: %lld frames (%s, %dx%d) in %s; simulate %.3g s, render %.3g s, "
-                   "wait for the encoder %.3g s%s\n",
-                   stopped ? "interrupted" : "finished", static_cast<long long>(written),
-                   movie.encoder_name().c_str(), movie.encoded_width(), movie.encoded_height(),
-                   movie.path().c_str(), sim_s, render_s, encode_s, pngs);
-    } else
-      std::fprintf(stderr, "grainshock: interrupted before the first frame; no movie written\n");
-  }
-  return stopped ? 128 + std::max(0, stop_signal()) : 0;
-}
-
-}  // namespace
 
 void add_movie_command(CLI::App& app) {
-  auto opt = std::make_shared<MovieCommandOptions>();
+  struct Options {
+    PhysicsConfig physics;
+    std::string out = "grainshock-movie";
+    bool force = false;
+    FrontMovieOptions movie;
+  };
+  auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand("movie", "Simulate one realisation and stream it into DIR/movie.mp4");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
   sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")
       ->capture_default_str();
   sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->quiet, "No progress on stderr");
-  sub->add_option("--frames", opt->frames, "Number of frames")->capture_default_str();
-  sub->add_option("--frame-spacing", opt->spacing,
+  sub->add_flag("--quiet", opt->movie.quiet, "No progress on stderr");
+  sub->add_option("--frames", opt->movie.frames, "Number of frames")->capture_default_str();
+  sub->add_option("--frame-spacing", opt->movie.spacing,
                   "Frame times: lin (t-max/N apart) or log (from --t-start to --t-max)")
       ->capture_default_str();
-  sub->add_option("--t-start", opt->t_start, "Time of the first frame with --frame-spacing log")
+  sub->add_option("--t-start", opt->movie.t_start, "Time of the first frame with --frame-spacing log")
       ->capture_default_str();
-  sub->add_option("--codec", opt->movie.codec, "h264 (falls back to mpeg4), libx264 or mpeg4")
+  sub->add_option("--codec", opt->movie.movie.codec, "h264 (falls back to mpeg4), libx264 or mpeg4")
       ->capture_default_str();
-  sub->add_option("--fps", opt->movie.fps, "Frames per second of the movie")->capture_default_str();
-  sub->add_option("--crf", opt->movie.crf, "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
+  sub->add_option("--fps", opt->movie.movie.fps, "Frames per second of the movie")->capture_default_str();
+  sub->add_option("--crf", opt->movie.movie.crf, "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
       ->capture_default_str();
-  sub->add_option("--width", opt->movie.width, "Frame width in pixels")->capture_default_str();
-  sub->add_option("--height", opt->movie.height, "Frame height in pixels")->capture_default_str();
-  sub->add_option("--camera", opt->camera,
+  sub->add_option("--width", opt->movie.movie.width, "Frame width in pixels")->capture_default_str();
+  sub->add_option("--height", opt->movie.movie.height, "Frame height in pixels")->capture_default_str();
+  sub->add_option("--camera", opt->movie.camera,
                   "follow: the front, smoothly; fixed: the whole periodic box")
       ->capture_default_str();
-  sub->add_option("--color-by", opt->colour_by, "speed, radial-velocity or first-collision")
+  sub->add_option("--color-by", opt->movie.colour_by, "speed, radial-velocity or first-collision")
       ->capture_default_str();
-  sub->add_option("--scale", opt->scale,
+  sub->add_option("--scale", opt->movie.scale,
                   "Colour scale lin, log or auto (log, except lin for radial-velocity)")
       ->capture_default_str();
-  sub->add_option("--range", opt->range,
+  sub->add_option("--range", opt->movie.range,
                   "Fixed colour range MIN MAX (default: spans every frame's 1-99 percentiles)")
       ->expected(2);
-  sub->add_option("--colormap", opt->colormap, "Colormap name")->capture_default_str();
-  sub->add_option("--background", opt->background, "light or dark")->capture_default_str();
-  sub->add_flag("--show-inactive", opt->show_inactive,
+  sub->add_option("--colormap", opt->movie.colormap, "Colormap name")->capture_default_str();
+  sub->add_option("--background", opt->movie.background, "light or dark")->capture_default_str();
+  sub->add_flag("--show-inactive", opt->movie.show_inactive,
                 "Also draw the particles at rest, in a faint neutral colour");
-  sub->add_option("--slab", opt->slab,
+  sub->add_option("--slab", opt->movie.slab,
                   "3D: keep a slab this thick through the centre, facing the camera (0: all)")
       ->capture_default_str();
-  sub->add_option("--azimuth", opt->azimuth, "3D: camera azimuth about z, degrees")
+  sub->add_option("--azimuth", opt->movie.azimuth, "3D: camera azimuth about z, degrees")
       ->capture_default_str();
-  sub->add_option("--elevation", opt->elevation, "3D: camera elevation, degrees")
+  sub->add_option("--elevation", opt->movie.elevation, "3D: camera elevation, degrees")
       ->capture_default_str();
-  sub->add_flag("--keep-frames", opt->keep_frames, "Also write every frame as DIR/frames/*.png");
-  sub->add_option("--gl", opt->backend, "OpenGL context: auto, osmesa or egl")
+  sub->add_flag("--keep-frames", opt->movie.keep_frames, "Also write every frame as DIR/frames/*.png");
+  sub->add_option("--gl", opt->movie.backend, "OpenGL context: auto, osmesa or egl")
       ->capture_default_str();
   sub->callback([opt] {
-    const int rc = run(*opt);
-    if (rc != 0) std::exit(rc);
+    // Everything typed is checked before the folder is made or anything runs.
+    validate(opt->physics);
+    check_front_movie(opt->physics, opt->movie);
+    const auto dir = prepare_output_dir(opt->out, opt->force);
+    write_file_atomic(dir / "run.toml", to_toml(opt->physics));
+    const FrontMovieResult r = write_front_movie(opt->physics, opt->movie, dir);
+    if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
   });
 }
 

@@ -1,0 +1,46 @@
+#pragma once
+// A movie of the spreading front: runs one realisation and streams its frames into a movie file,
+// with no intermediate files. Used by `grainshock movie`; callable by any command that wants the
+// same movie of its run.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/movie_writer.h"
+#include "sim/config.h"
+
+namespace gs::app {
+
+// The flags of `grainshock movie` beyond the physics, with its defaults.
+struct FrontMovieOptions {
+  int frames = 240;
+  std::string spacing = "log";  // lin: t-max / frames apart; log: from t_start to t-max
+  double t_start = 1;
+  render::MovieOptions movie{.width = 1280, .height = 720};
+  std::string camera = "follow";  // follow: the front, smoothly; fixed: the whole periodic box
+  std::string colour_by = "speed", scale = "auto", colormap = "viridis", background = "dark";
+  std::vector<double> range;  // MIN MAX; empty: spans every frame's 1-99 percentiles
+  bool show_inactive = false;
+  double slab = 6;  // 3D: a cut through the shell shows the band, the whole shell only its skin
+  double azimuth = 30, elevation = 20;
+  bool keep_frames = false;  // also write DIR/frames/frame_NNNNN.png
+  std::string backend = "auto";
+  bool quiet = false;
+};
+
+// Throws UserError naming the flag if these options cannot make a movie of this run. Touches
+// nothing on disk, so a command can call it before it makes its output folder.
+void check_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o);
+
+struct FrontMovieResult {
+  std::int64_t frames = 0;  // in the movie
+  bool stopped = false;     // by SIGINT/SIGTERM (sim/stop.h); the movie is complete all the same
+};
+
+// Writes dir/movie.mp4 (dir must exist). A stop request ends it early with a playable movie of
+// the frames so far, or no file if there were none.
+FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                                   const std::filesystem::path& dir);
+
+}  // namespace gs::app
