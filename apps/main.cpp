@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   gs::app::add_movie_command(app);
   gs::app::add_ensemble_command(app);
   gs::app::add_merge_command(app);
+  gs::app::add_figures_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,80 @@
+#include "apps/figures_plan.h"
+
+#include <cstdio>
+
+#include "sim/format.h"
+
+namespace gs::app {
+namespace {
+
+struct Size {
+  std::int64_t particles;
+  double t_max;         // r < 1
+  double t_max_elastic; // r = 1: the front runs as t^(2/(d+2)), much faster
+  std::uint64_t realisations;
+  std::uint64_t realisations_elastic;
+};
+
+Size size_of(FiguresMode m, int d) {
+  switch (m) {
+    case FiguresMode::Tiny:
+      return d == 2 ? Size{3000, 1500, 300, 3, 3} : Size{5000, 1000, 200, 3, 3};
+    case FiguresMode::Quick:
+      return d == 2 ? Size{100000, 100000, 12000, 40, 20} : Size{200000, 30000, 3000, 16, 8};
+    case FiguresMode::Full:
+    default:
+      // The paper's sizes (2.5e5 discs, 2e6 spheres) and 100 realisations.
+      return d == 2 ? Size{250000, 200000, 30000, 100, 100} : Size{2000000, 120000, 12000, 100, 100};
+  }
+}
+
+}  // namespace
+
+const char* to_string(FiguresMode m) {
+  switch (m) {
+    case FiguresMode::Tiny: return "tiny";
+    case FiguresMode::Quick: return "quick";
+    default: return "full";
+  }
+}
+
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed) {
+  FiguresPlan plan;
+  plan.mode = mode;
+  for (int d : {2, 3}) {
+    const Size s = size_of(mode, d);
+    for (double r : {0.1, 0.5, 0.8, 1.0}) {
+      FigureCase c;
+      char name[32];
+      std::snprintf(name, sizeof name, "d%d_r%s", d, format_number(r).c_str());
+      c.name = name;
+      EnsembleSpec& e = c.spec;
+      e.physics.dim = d;
+      e.physics.particles = s.particles;
+      e.physics.restitution = r;
+      e.physics.seed = seed;
+      e.physics.t_max = r < 1 ? s.t_max : s.t_max_elastic;
+      e.realisations = r < 1 ? s.realisations : s.realisations_elastic;
+      e.per_decade = 20;
+      // The paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and 1 : 5/3 : 2.5 (3D).
+      const double T = e.physics.t_max;
+      e.snapshot_times = d == 2 ? std::vector<double>{T / 2, 0.75 * T, T}
+                                : std::vector<double>{0.4 * T, T * 2 / 3, T};
+      e = checked(e);
+      plan.cases.push_back(std::move(c));
+    }
+  }
+  const double T = size_of(mode, 2).t_max;
+  // The paper's Fig. 1(a) times 5000, 10000, 20000, 50000 as fractions of the last.
+  plan.fig1a_times = {T / 10, T / 5, T * 2 / 5, T};
+  plan.fig1b_time = size_of(mode, 2).t_max_elastic;
+  return plan;
+}
+
+const FigureCase* find_case(const FiguresPlan& plan, int d, double r) {
+  for (const auto& c : plan.cases)
+    if (c.spec.physics.dim == d && c.spec.physics.restitution == r) return &c;
+  return nullptr;
+}
+
+}  // namespace gs::app
