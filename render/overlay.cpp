@@ -56,31 +56,49 @@ void fill_rect(Image& img, int x0, int y0, int x1, int y1, Rgb8 colour, float al
     }
 }
 
-int OverlayPainter::unit(const Image& img) {
-  const int px = std::clamp(static_cast<int>(std::lround(std::min(img.width, img.height) / 40.0)),
-                            10, 72);
+int OverlayPainter::unit(int width, int height) {
+  const int px = std::clamp(static_cast<int>(std::lround(std::min(width, height) / 40.0)), 10, 72);
   font_.set_pixel_size(px);
   return px;
 }
 
+OverlayPainter::BarLayout OverlayPainter::layout(int width, int height,
+                                                 std::pair<double, double> range, Scale scale,
+                                                 const std::string& label) {
+  BarLayout l;
+  l.u = unit(width, height);
+  const int u = l.u;
+  l.ticks = colorbar_ticks(range.first, range.second, scale);
+  int label_w = 0;
+  for (double v : l.ticks) label_w = std::max(label_w, font_.width(tick_text(v)));
+  const int bar_w = std::max(6, u * 4 / 5);
+  l.tick_len = std::max(3, u / 3);
+  l.gap = u / 4;
+  const int bar_h = std::max(20, height / 2);
+  const int title_w = font_.width(label);
+  l.right = width - u;
+  l.bar.x1 = l.right - label_w - l.gap - l.tick_len;
+  l.bar.x0 = l.bar.x1 - bar_w;
+  l.bar.y0 = (height - bar_h) / 2 + u / 2;
+  l.bar.y1 = l.bar.y0 + bar_h;
+  l.title_base = l.bar.y0 - u / 2 - font_.descent();
+  l.title_x = std::min(l.bar.x0, l.right - title_w);
+  l.panel_x0 = std::min(l.bar.x0, l.title_x) - u / 2;
+  return l;
+}
+
+int OverlayPainter::colorbar_width(int width, int height, std::pair<double, double> range,
+                                   Scale scale, const std::string& label) {
+  return width - layout(width, height, range, scale, label).panel_x0;
+}
+
 BarRect OverlayPainter::colorbar(Image& img, const Colormap& cmap, std::pair<double, double> range,
                                  Scale scale, const std::string& label, const OverlayColours& c) {
-  const int u = unit(img);
-  const auto ticks = colorbar_ticks(range.first, range.second, scale);
-  int label_w = 0;
-  for (double v : ticks) label_w = std::max(label_w, font_.width(tick_text(v)));
-  const int bar_w = std::max(6, u * 4 / 5), tick_len = std::max(3, u / 3), gap = u / 4;
-  const int bar_h = std::max(20, img.height / 2);
-  const int title_w = font_.width(label);
-  const int right = img.width - u;
-  BarRect r;
-  r.x1 = right - label_w - gap - tick_len;
-  r.x0 = r.x1 - bar_w;
-  r.y0 = (img.height - bar_h) / 2 + u / 2;
-  r.y1 = r.y0 + bar_h;
-  const int title_base = r.y0 - u / 2 - font_.descent();
-  const int title_x = std::min(r.x0, right - title_w);
-  fill_rect(img, std::min(r.x0, title_x) - u / 2, title_base - font_.ascent() - u / 3, right + u / 2,
+  const BarLayout l = layout(img.width, img.height, range, scale, label);
+  const int u = l.u, tick_len = l.tick_len, gap = l.gap, bar_h = l.bar.y1 - l.bar.y0;
+  const BarRect r = l.bar;
+  const auto& ticks = l.ticks;
+  fill_rect(img, l.panel_x0, l.title_base - font_.ascent() - u / 3, l.right + u / 2,
             r.y1 + u / 2 + font_.descent(), c.panel, 0.8f);
   for (int y = r.y0; y < r.y1; ++y) {
     const double t = bar_h > 1 ? double(r.y1 - 1 - y) / (bar_h - 1) : 0;
@@ -98,12 +116,12 @@ BarRect OverlayPainter::colorbar(Image& img, const Colormap& cmap, std::pair<dou
     font_.draw(img, r.x1 + tick_len + gap, y + (font_.ascent() - font_.descent()) / 2,
                tick_text(v), c.text);
   }
-  font_.draw(img, title_x, title_base, label, c.text);
+  font_.draw(img, l.title_x, l.title_base, label, c.text);
   return r;
 }
 
 void OverlayPainter::top_left_label(Image& img, const std::string& text, const OverlayColours& c) {
-  const int u = unit(img);
+  const int u = unit(img.width, img.height);
   const int w = font_.width(text);
   fill_rect(img, u / 2, u / 2, u + w + u / 2, u + font_.ascent() + font_.descent() + u / 3, c.panel,
             0.8f);
@@ -112,7 +130,7 @@ void OverlayPainter::top_left_label(Image& img, const std::string& text, const O
 
 void OverlayPainter::legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
                             const OverlayColours& c) {
-  const int u = unit(img);
+  const int u = unit(img.width, img.height);
   const int line = font_.ascent() + font_.descent() + u / 4;
   int w = 0;
   for (const auto& e : entries) w = std::max(w, font_.width(e.second));
@@ -129,7 +147,7 @@ void OverlayPainter::legend(Image& img, const std::vector<std::pair<Rgb8, std::s
 }
 
 void OverlayPainter::scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c) {
-  const int u = unit(img);
+  const int u = unit(img.width, img.height);
   const double len = nice_step(img.width / pixels_per_unit, 5);  // about a fifth of the width
   const int px = static_cast<int>(std::lround(len * pixels_per_unit));
   const std::string text = tick_text(len) + " diameters";

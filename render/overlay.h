@@ -35,6 +35,9 @@ class OverlayPainter {
 
   BarRect colorbar(Image& img, const Colormap& cmap, std::pair<double, double> range,
                    Scale scale, const std::string& label, const OverlayColours& c);
+  // Pixels the colour bar's panel takes from the right edge, so a fitted scene can keep clear.
+  int colorbar_width(int width, int height, std::pair<double, double> range, Scale scale,
+                     const std::string& label);
   void top_left_label(Image& img, const std::string& text, const OverlayColours& c);
   void legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
               const OverlayColours& c);
@@ -42,7 +45,14 @@ class OverlayPainter {
   void scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c);
 
  private:
-  int unit(const Image& img);  // sets and returns the font's pixel size
+  struct BarLayout {
+    int u = 0, tick_len = 0, gap = 0, right = 0, title_base = 0, title_x = 0, panel_x0 = 0;
+    BarRect bar;
+    std::vector<double> ticks;
+  };
+  BarLayout layout(int width, int height, std::pair<double, double> range, Scale scale,
+                   const std::string& label);
+  int unit(int width, int height);  // sets and returns the font's pixel size
   Font font_;
 };
 

@@ -101,7 +101,7 @@ void main() {
   vec3 c = (view * vec4(inst.xyz, 1.0)).xyz;
   float r = inst.w;
   float d2 = dot(c, c);
-  float s = r * sqrt(d2 / max(d2 - r * r, 1e-4 * d2)) + 2.0 * sqrt(d2) * px_per_depth;
+  float s = r * sqrt(d2 / max(d2 - r * r, 1e-4 * d2)) + sqrt(d2) * px_per_depth;
   vec3 w = normalize(c);
   vec3 up = abs(w.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
   vec3 u = normalize(cross(up, w));
@@ -223,6 +223,15 @@ struct Renderer::Impl {
   std::optional<OverlayPainter> painter;
   std::string painter_font;
   RenderInfo info;
+
+  OverlayPainter& overlay_painter(const std::string& font) {
+    if (!painter || painter_font != font) {
+      painter.reset();
+      painter.emplace(font);
+      painter_font = font;
+    }
+    return *painter;
+  }
 
   GLuint compile(GLenum type, const char* src) {
     const GLuint s = gl.CreateShader(type);
@@ -397,6 +406,9 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
                                             style.percentile_high);
   }
 
+  std::string bar_label = field_label(style.field);
+  if (style.scale == Scale::Log) bar_label += " (log)";
+
   // Framing: the active particles of all snapshots, or the box.
   Eigen::AlignedBox3d fit;
   double r_max = 0;
@@ -434,6 +446,20 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     cam = make_camera_3d(c, std::sqrt(r2) + r_max, view);
   } else {
     cam = make_camera_2d(fit, r_max, view);
+    // A framed (not explicitly centred) scene keeps clear of the colour bar on the right.
+    if (style.colorbar && !overlay && !view.centre) {
+      const int reserve = m.overlay_painter(style.font).colorbar_width(
+          view.width, view.height, m.info.range, style.scale, bar_label);
+      if (reserve < view.width / 2) {
+        View narrow = view;
+        narrow.width -= reserve;
+        cam = make_camera_2d(fit, r_max, narrow);
+        const double ppu = cam.pixels_per_unit();
+        cam.width = view.width;
+        cam.half_w = view.width / (2 * ppu);
+        cam.origin.x() += reserve / (2 * ppu);
+      }
+    }
   }
   m.info.camera = cam;
 
@@ -548,14 +574,11 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   if (splat) splat_discs(img, m.instances, cam.pixels_per_unit());
 
   // Overlays, on the CPU: text and the colour bar come out identical on every driver.
+  OverlayPainter* painter = nullptr;
   const bool any_overlay = (style.colorbar && !overlay) || style.time_label ||
                            (style.legend && overlay) || (style.scale_bar && !three_d);
   if (!any_overlay) return img;
-  if (!m.painter || m.painter_font != style.font) {
-    m.painter.reset();
-    m.painter.emplace(style.font);
-    m.painter_font = style.font;
-  }
+  painter = &m.overlay_painter(style.font);
   const OverlayColours oc{pal.text, pal.background};
   auto time_text = [](const SnapshotInfo& in) {
     std::string t = "t = " + fmt("%.5g", in.time);
@@ -569,17 +592,15 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
       std::vector<std::pair<Rgb8, std::string>> entries;
       for (std::size_t k = 0; k < snaps.size(); ++k)
         entries.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
-      m.painter->legend(img, entries, oc);
+      painter->legend(img, entries, oc);
     }
   } else {
     if (style.colorbar) {
-      std::string label = field_label(style.field);
-      if (style.scale == Scale::Log) label += " (log)";
-      m.info.colorbar = m.painter->colorbar(img, cmap, m.info.range, style.scale, label, oc);
+      m.info.colorbar = painter->colorbar(img, cmap, m.info.range, style.scale, bar_label, oc);
     }
-    if (style.time_label) m.painter->top_left_label(img, time_text(snaps.front()->info), oc);
+    if (style.time_label) painter->top_left_label(img, time_text(snaps.front()->info), oc);
   }
-  if (style.scale_bar && !three_d) m.painter->scale_bar(img, cam.pixels_per_unit(), oc);
+  if (style.scale_bar && !three_d) painter->scale_bar(img, cam.pixels_per_unit(), oc);
   return img;
 }
 
