@@ -58,7 +58,17 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string snapshot_name(double t) { return "t_" + format_number(t) + ".xyz"; }
+// Whole times print as plain integers (t_100000, not t_1e+05) so that names sort and read well.
+std::string time_tag(double t) {
+  char buf[32];
+  if (t == std::floor(t) && t < 1e15) {
+    std::snprintf(buf, sizeof buf, "%.0f", t);
+    return buf;
+  }
+  return format_number(t);
+}
+
+std::string snapshot_name(double t) { return "t_" + time_tag(t) + ".xyz"; }
 
 std::string summary_json(const RunOptions& o, const Simulation& sim, double setup_s, double run_s,
                          bool interrupted) {
@@ -114,7 +124,7 @@ std::pair<double, double> common_range(const std::vector<Snapshot>& snaps,
 }
 
 std::string png_name(const std::string& stem, double t) {
-  return stem + "t_" + format_number(t) + ".png";
+  return stem + "t_" + time_tag(t) + ".png";
 }
 
 // Fig. 1-style pictures: each snapshot coloured by speed on a shared scale, and (with two or
