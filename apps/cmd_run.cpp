@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/cli.h"
+#include "apps/front_movie.h"
 #include "apps/commands.h"
 #include "apps/progress.h"
 #include "render/field.h"
@@ -35,6 +36,7 @@ struct RunOptions {
   std::vector<double> snapshot_times;
   bool png = false;              // a PNG of every snapshot, and the Fig. 1(a) overlay
   bool compare_elastic = false;  // the Fig. 1(b) frame: the same gas with r = 1
+  bool movie = false;            // movie.mp4 of the front, as `grainshock movie` makes it
   int width = 1920, height = 1080;
 };
 
@@ -51,6 +53,7 @@ RunOptions demo_options() {
   for (double t : kFig1Times) o.snapshot_times.push_back(t * to_sim);
   o.png = true;
   o.compare_elastic = true;
+  o.movie = true;
   return o;
 }
 
@@ -177,6 +180,9 @@ int run(const RunOptions& o) {
     if (!(t > 0 && t <= o.physics.t_max))
       throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
+  FrontMovieOptions movie;
+  movie.quiet = o.quiet;
+  if (o.movie) check_front_movie(o.physics, movie);
   const auto dir = prepare_output_dir(o.out, o.force);
   std::filesystem::create_directories(dir / "snapshots");
   write_file_atomic(dir / "run.toml", to_toml(o.physics));
@@ -234,6 +240,11 @@ int run(const RunOptions& o) {
   write_file_atomic(dir / "summary.json", summary_json(o, *sim, setup_s, run_s, interrupted));
   if (!interrupted && o.png) write_pictures(dir, kept, o);
   if (!interrupted && o.compare_elastic) write_elastic_comparison(dir, o);
+  if (!interrupted && o.movie) {
+    // Runs are reproducible from (config, seed): the movie replays this very trajectory.
+    if (!o.quiet) std::fprintf(stderr, "grainshock: movie of the front\n");
+    interrupted = write_front_movie(o.physics, movie, dir).stopped;
+  }
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s\n",
                  interrupted ? "interrupted" : "finished", to_string(o.physics.initial),
@@ -263,13 +274,15 @@ void add_run_command(CLI::App& app) {
                 "Draw every snapshot into frames/*.png (colour = speed) and overlay them all");
   sub->add_flag("--compare-elastic", opt->compare_elastic,
                 "Also run the same kick with r = 1 to half of t-max, like the paper's Fig. 1(b)");
+  sub->add_flag("--movie", opt->movie,
+                "Also write movie.mp4 of the front (the defaults of `grainshock movie`)");
   sub->add_option("--width", opt->width, "Width of the pictures in pixels")->capture_default_str();
   sub->add_option("--height", opt->height, "Height of the pictures in pixels")
       ->capture_default_str();
   sub->footer(
       "With no flags at all, runs the paper's Fig. 1 job: 2.5e5 discs, r = 0.1, snapshots and "
-      "pictures at paper times 5000, 10000, 20000, 50000, their overlay, and the elastic "
-      "comparison, into grainshock-run/.");
+      "pictures at paper times 5000, 10000, 20000, 50000, their overlay, the elastic "
+      "comparison and a movie of the front, into grainshock-run/.");
   sub->callback([opt, sub] {
     bool any_flag = false;
     for (const CLI::Option* option : sub->get_options()) any_flag |= option->count() > 0;
