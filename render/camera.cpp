@@ -48,6 +48,7 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   radius = std::max(radius + (c.origin - centre).norm(), 1e-6);
   const double half = std::atan(std::min(c.tan_half_x, c.tan_half_y));
   double dist = v.distance > 0 ? v.distance : radius * (1 + v.margin) / std::sin(half) / v.zoom;
+  c.distance = dist;
   const double az = v.azimuth * deg, el = v.elevation * deg;
   // World z is up; azimuth turns about it, elevation lifts the eye above the xy plane.
   const Eigen::Vector3d eye =

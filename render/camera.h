@@ -19,6 +19,7 @@ struct Camera {
   Eigen::Matrix4d view = Eigen::Matrix4d::Identity(), proj = Eigen::Matrix4d::Identity();
   Eigen::Vector3d forward = -Eigen::Vector3d::UnitZ();  // unit line of sight
   double near = 0.1, far = 100;
+  double distance = 0;  // 3D: from the eye to the origin
   double tan_half_x = 1, tan_half_y = 1;
   double slab = 0;
 

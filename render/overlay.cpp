@@ -84,6 +84,7 @@ OverlayPainter::BarLayout OverlayPainter::layout(int width, int height,
   l.title_base = l.bar.y0 - u / 2 - font_.descent();
   l.title_x = std::min(l.bar.x0, l.right - title_w);
   l.panel_x0 = std::min(l.bar.x0, l.title_x) - u / 2;
+  l.bar.panel_x0 = l.panel_x0;
   return l;
 }
 
@@ -126,6 +127,14 @@ void OverlayPainter::top_left_label(Image& img, const std::string& text, const O
   fill_rect(img, u / 2, u / 2, u + w + u / 2, u + font_.ascent() + font_.descent() + u / 3, c.panel,
             0.8f);
   font_.draw(img, u, u + font_.ascent(), text, c.text);
+}
+
+int OverlayPainter::legend_width(int width, int height,
+                                 const std::vector<std::pair<Rgb8, std::string>>& entries) {
+  const int u = unit(width, height);
+  int w = 0;
+  for (const auto& e : entries) w = std::max(w, font_.width(e.second));
+  return u + w + font_.ascent() + u;
 }
 
 void OverlayPainter::legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,

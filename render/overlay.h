@@ -27,6 +27,7 @@ struct OverlayColours {
 // Where the colour bar was drawn, for tests: the gradient's pixel rectangle.
 struct BarRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // inclusive-exclusive, y0 at the top (high end)
+  int panel_x0 = 0;                    // left edge of the panel behind bar, ticks and title
 };
 
 class OverlayPainter {
@@ -41,6 +42,7 @@ class OverlayPainter {
   void top_left_label(Image& img, const std::string& text, const OverlayColours& c);
   void legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
               const OverlayColours& c);
+  int legend_width(int width, int height, const std::vector<std::pair<Rgb8, std::string>>& entries);
   // A bar of a round length in particle diameters, bottom left.
   void scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c);
 

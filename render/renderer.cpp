@@ -409,6 +409,28 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   std::string bar_label = field_label(style.field);
   if (style.scale == Scale::Log) bar_label += " (log)";
 
+  auto time_text = [](const SnapshotInfo& in) {
+    std::string t = "t = " + fmt("%.5g", in.time);
+    if (in.density)
+      t += "   t_paper = " +
+           fmt("%.5g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
+    return t;
+  };
+  std::vector<std::pair<Rgb8, std::string>> legend;
+  for (std::size_t k = 0; overlay && k < snaps.size(); ++k)
+    legend.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
+  // A framed (not explicitly centred) scene keeps clear of the colour bar or legend on the
+  // right: it is fitted into the rest of the width.
+  int reserve = 0;
+  if (!view.centre) {
+    if (style.colorbar && !overlay)
+      reserve = m.overlay_painter(style.font)
+                    .colorbar_width(view.width, view.height, m.info.range, style.scale, bar_label);
+    else if (style.legend && overlay)
+      reserve = m.overlay_painter(style.font).legend_width(view.width, view.height, legend);
+    if (reserve >= view.width / 2) reserve = 0;
+  }
+
   // Framing: the active particles of all snapshots, or the box.
   Eigen::AlignedBox3d fit;
   double r_max = 0;
@@ -444,21 +466,26 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
         for (std::size_t i = 0; i < s->size(); ++i)
           if (all || s->active[i]) r2 = std::max(r2, (s->position[i] - c).squaredNorm());
     cam = make_camera_3d(c, std::sqrt(r2) + r_max, view);
+    if (reserve > 0) {
+      View narrow = view;
+      narrow.width -= reserve;
+      const Camera fitted = make_camera_3d(c, std::sqrt(r2) + r_max, narrow);
+      View shifted = view;
+      shifted.distance = fitted.distance;
+      const double ppu = view.height / (2 * fitted.distance * fitted.tan_half_y);
+      shifted.centre = c + fitted.view.block<1, 3>(0, 0).transpose() * (reserve / 2.0 / ppu);
+      cam = make_camera_3d(c, std::sqrt(r2) + r_max, shifted);
+    }
   } else {
     cam = make_camera_2d(fit, r_max, view);
-    // A framed (not explicitly centred) scene keeps clear of the colour bar on the right.
-    if (style.colorbar && !overlay && !view.centre) {
-      const int reserve = m.overlay_painter(style.font).colorbar_width(
-          view.width, view.height, m.info.range, style.scale, bar_label);
-      if (reserve < view.width / 2) {
-        View narrow = view;
-        narrow.width -= reserve;
-        cam = make_camera_2d(fit, r_max, narrow);
-        const double ppu = cam.pixels_per_unit();
-        cam.width = view.width;
-        cam.half_w = view.width / (2 * ppu);
-        cam.origin.x() += reserve / (2 * ppu);
-      }
+    if (reserve > 0) {
+      View narrow = view;
+      narrow.width -= reserve;
+      cam = make_camera_2d(fit, r_max, narrow);
+      const double ppu = cam.pixels_per_unit();
+      cam.width = view.width;
+      cam.half_w = view.width / (2 * ppu);
+      cam.origin.x() += reserve / (2 * ppu);
     }
   }
   m.info.camera = cam;
@@ -580,20 +607,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   if (!any_overlay) return img;
   painter = &m.overlay_painter(style.font);
   const OverlayColours oc{pal.text, pal.background};
-  auto time_text = [](const SnapshotInfo& in) {
-    std::string t = "t = " + fmt("%.5g", in.time);
-    if (in.density)
-      t += "   t_paper = " +
-           fmt("%.5g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
-    return t;
-  };
   if (overlay) {
-    if (style.legend) {
-      std::vector<std::pair<Rgb8, std::string>> entries;
-      for (std::size_t k = 0; k < snaps.size(); ++k)
-        entries.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
-      painter->legend(img, entries, oc);
-    }
+    if (style.legend) painter->legend(img, legend, oc);
   } else {
     if (style.colorbar) {
       m.info.colorbar = painter->colorbar(img, cmap, m.info.range, style.scale, bar_label, oc);

@@ -218,6 +218,18 @@ TEST(RenderStructure, ColourBarRunsFromLowToHighColour) {
   }
 }
 
+TEST(RenderStructure, FittedSceneKeepsClearOfTheColourBar) {
+  const View v = small_view(400, 300);
+  const Snapshot s = speed_gradient();
+  renderer().render(s, Style{}, v);
+  const BarRect bar = renderer().last().colorbar;
+  const double ppu = renderer().last().camera.pixels_per_unit();
+  for (const auto& p : s.position) {
+    const int right_edge = pixel_of(p, v).first + static_cast<int>(std::ceil(0.5 * ppu)) + 1;
+    EXPECT_LT(right_edge, bar.panel_x0) << "disc at x = " << p.x();
+  }
+}
+
 TEST(RenderStructure, NearerSphereHidesFartherWhateverTheOrder) {
   for (bool near_first : {true, false}) {
     Snapshot s = empty_snapshot(3, 0, 0);
