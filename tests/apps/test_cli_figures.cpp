@@ -1,0 +1,76 @@
+// Smoke test of `grainshock figures` at the seconds-long --tiny size: every promised file is
+// written and summary.json carries the comparisons other tools read. The numbers of a tiny run
+// are not physics; their values are not tested here.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/apps/cli_test_util.h"
+
+namespace gs {
+namespace {
+
+using test::grainshock;
+using test::read_file;
+using test::scratch_dir;
+namespace fs = std::filesystem;
+
+bool is_png(const fs::path& p) {
+  const std::string s = read_file(p);
+  return s.size() > 1000 && s.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+}
+
+TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
+  const auto dir = scratch_dir("tiny");
+  const auto r = grainshock("figures --tiny --threads 2 --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* png : {"fig1a_overlay_r0.1.png", "fig1b_elastic_r1.png"})
+    EXPECT_TRUE(is_png(dir / png)) << png;
+  for (const char* base : {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d",
+                           "fig5_collapse_3d", "fig6_crossover"}) {
+    const std::string b(base);
+    EXPECT_TRUE(is_png(dir / (b + ".png"))) << b;
+    EXPECT_TRUE(fs::exists(dir / (b + ".csv"))) << b;
+    // The script draws from the CSV beside it, so that a user can restyle the plot.
+    const std::string gp = read_file(dir / (b + ".gp"));
+    EXPECT_NE(gp.find(b + ".csv"), std::string::npos) << b;
+    EXPECT_NE(gp.find(b + ".png"), std::string::npos) << b;
+  }
+  for (const char* c : {"d2_r0.1", "d2_r0.5", "d2_r0.8", "d2_r1", "d3_r0.1", "d3_r0.5", "d3_r0.8",
+                        "d3_r1"})
+    EXPECT_TRUE(fs::exists(dir / "ensembles" / c / "timeseries_mean.csv")) << c;
+
+  const std::string summary = read_file(dir / "summary.json");
+  ASSERT_NE(summary.find("\"comparisons\""), std::string::npos);
+  for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
+                          "\"theory\"", "\"agrees\"", "\"wall_seconds\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key;
+  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "band packing (typical)",
+                        "band packing (upper, 90% quantile)", "A(t_max)"})
+    EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
+  const std::string report = read_file(dir / "report.md");
+  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions"})
+    EXPECT_NE(report.find(q), std::string::npos) << q;
+}
+
+TEST(CliFigures, BadInputIsRefusedInOneLine) {
+  const auto dir = scratch_dir("bad");
+  auto r = grainshock("figures --tiny --full --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
+  r = grainshock("figures --tiny --threads 0 --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
+  fs::create_directories(dir);
+  { std::ofstream(dir / "keep.txt") << "mine"; }
+  r = grainshock("figures --tiny --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_EQ(read_file(dir / "keep.txt"), "mine");
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+}
+
+}  // namespace
+}  // namespace gs
