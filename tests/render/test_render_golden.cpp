@@ -220,7 +220,8 @@ TEST(RenderStructure, ColourBarRunsFromLowToHighColour) {
 
 TEST(RenderStructure, FittedSceneKeepsClearOfTheColourBar) {
   const View v = small_view(400, 300);
-  const Snapshot s = speed_gradient();
+  Snapshot s = empty_snapshot(2, 0, 0);  // wider than the picture's aspect: fills its width
+  for (int i = 0; i < 20; ++i) add(s, {2.0 * i, 0.5 * (i % 3), 0}, {0.05 * i, 0, 0});
   renderer().render(s, Style{}, v);
   const BarRect bar = renderer().last().colorbar;
   const double ppu = renderer().last().camera.pixels_per_unit();
