@@ -89,18 +89,24 @@ void add_render_command(CLI::App& app) {
     st.background = render::parse_background(o.background);
     st.scale = o.log ? render::Scale::Log : render::Scale::Linear;
     if (!o.range.empty()) st.range = std::pair{o.range[0], o.range[1]};
-    if (!o.percentiles.empty()) st.percentile_low = o.percentiles[0], st.percentile_high = o.percentiles[1];
+    if (!o.percentiles.empty())
+      st.percentile_low = o.percentiles[0], st.percentile_high = o.percentiles[1];
     st.colorbar = !o.no_colorbar;
     st.time_label = !o.no_time;
     st.legend = !o.no_legend;
-    if (o.framing == "fit") o.view.framing = render::Framing::Fit;
-    else if (o.framing == "box") o.view.framing = render::Framing::Box;
-    else throw UserError("unknown --framing '" + o.framing + "' (use fit or box)");
+    if (o.framing == "fit")
+      o.view.framing = render::Framing::Fit;
+    else if (o.framing == "box")
+      o.view.framing = render::Framing::Box;
+    else
+      throw UserError("unknown --framing '" + o.framing + "' (use fit or box)");
     if (!o.centre.empty())
-      o.view.centre = Eigen::Vector3d(o.centre[0], o.centre[1], o.centre.size() > 2 ? o.centre[2] : 0);
+      o.view.centre =
+          Eigen::Vector3d(o.centre[0], o.centre[1], o.centre.size() > 2 ? o.centre[2] : 0);
     if (!(o.view.zoom > 0)) throw UserError("--zoom must be positive");
     if (!(o.view.fov > 0 && o.view.fov < 180)) throw UserError("--fov must be between 0 and 180");
-    if (o.view.slab < 0 || o.view.distance < 0) throw UserError("--slab and --distance must be >= 0");
+    if (o.view.slab < 0 || o.view.distance < 0)
+      throw UserError("--slab and --distance must be >= 0");
     // Everything the user typed is checked before any file is read or GL context made.
     render::check_size(o.view.width, o.view.height, 16384);
     render::check_style(st);
@@ -112,8 +118,8 @@ void add_render_command(CLI::App& app) {
       snaps.push_back(read_xyz(path));
       const bool needs_velocity = o.inputs.size() == 1 && st.field != render::Field::FirstCollision;
       if (needs_velocity && !snaps.back().has_velocity())
-        throw UserError("snapshot '" + path + "' has no velocities (no velo property); cannot colour by " +
-                        o.colour_by);
+        throw UserError("snapshot '" + path +
+                        "' has no velocities (no velo property); cannot colour by " + o.colour_by);
       if (o.inputs.size() == 1 && st.field == render::Field::FirstCollision &&
           snaps.back().first_collision.empty())
         throw UserError("snapshot '" + path + "' has no first_collision property");

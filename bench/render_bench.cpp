@@ -63,8 +63,8 @@ Snapshot band_only(std::size_t n, double box, double r_in, double r_out) {
   return s;
 }
 
-std::vector<Figure> measure(const Snapshot& s, const render::Style& style,
-                            const render::View& view, const std::string& target) {
+std::vector<Figure> measure(const Snapshot& s, const render::Style& style, const render::View& view,
+                            const std::string& target) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
   render::Renderer r;
@@ -99,27 +99,27 @@ render::View full_hd() {
 }  // namespace
 
 void add_render_cases(std::vector<Case>& cases) {
-  cases.push_back({"render/discs_2.5e5", "2D, 2.5e5 discs (whole box, inactive shown), 1920x1080",
-                   false, [] {
-                     const auto s = synthetic(2, 250000, 1000, 300, 330);
-                     render::Style st;
-                     st.show_inactive = true;
-                     auto v = full_hd();
-                     v.framing = render::Framing::Box;
-                     return measure(s, st, v, "<= 100 ms");
-                   }});
-  cases.push_back({"render/discs_2e4_active", "2D, 2e4 active discs in a band, fitted, 1920x1080",
-                   false, [] {
-                     const auto s = band_only(20000, 1000, 300, 330);
-                     return measure(s, render::Style{}, full_hd(), "<= 40 ms");
-                   }});
-  cases.push_back({"render/spheres_2e6", "3D, 2e6 spheres in a 200^3 box, active shell drawn, 1920x1080",
-                   true, [] {
+  cases.push_back(
+      {"render/discs_2.5e5", "2D, 2.5e5 discs (whole box, inactive shown), 1920x1080", false, [] {
+         const auto s = synthetic(2, 250000, 1000, 300, 330);
+         render::Style st;
+         st.show_inactive = true;
+         auto v = full_hd();
+         v.framing = render::Framing::Box;
+         return measure(s, st, v, "<= 100 ms");
+       }});
+  cases.push_back(
+      {"render/discs_2e4_active", "2D, 2e4 active discs in a band, fitted, 1920x1080", false, [] {
+         const auto s = band_only(20000, 1000, 300, 330);
+         return measure(s, render::Style{}, full_hd(), "<= 40 ms");
+       }});
+  cases.push_back({"render/spheres_2e6",
+                   "3D, 2e6 spheres in a 200^3 box, active shell drawn, 1920x1080", false, [] {
                      const auto s = synthetic(3, 2000000, 200, 60, 64);
                      return measure(s, render::Style{}, full_hd(), "<= 1 s");
                    }});
-  cases.push_back({"render/spheres_2e6_slab", "3D, 2e6 spheres, slab of 6 with inactive shown, 1920x1080",
-                   true, [] {
+  cases.push_back({"render/spheres_2e6_slab",
+                   "3D, 2e6 spheres, slab of 6 with inactive shown, 1920x1080", true, [] {
                      const auto s = synthetic(3, 2000000, 200, 60, 64);
                      render::Style st;
                      st.show_inactive = true;

@@ -51,8 +51,8 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   c.distance = dist;
   const double az = v.azimuth * deg, el = v.elevation * deg;
   // World z is up; azimuth turns about it, elevation lifts the eye above the xy plane.
-  const Eigen::Vector3d eye =
-      dist * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+  const Eigen::Vector3d eye = dist * Eigen::Vector3d(std::cos(el) * std::cos(az),
+                                                     std::cos(el) * std::sin(az), std::sin(el));
   c.forward = -eye.normalized();
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   if (std::abs(c.forward.dot(up)) > 0.999) up = Eigen::Vector3d::UnitY();

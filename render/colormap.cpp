@@ -9,8 +9,8 @@
 namespace gs::render {
 
 const std::vector<std::string>& Colormap::names() {
-  static const std::vector<std::string> n = {"viridis", "inferno", "magma", "cividis", "turbo",
-                                             "grey"};
+  static const std::vector<std::string> n = {"viridis", "inferno", "magma",
+                                             "cividis", "turbo",   "grey"};
   return n;
 }
 

@@ -46,8 +46,12 @@ std::unique_ptr<GLContext> create_egl_context(std::string& why) {
     why = "no surfaceless display";
     return nullptr;
   }
-  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                            3,
+                            EGL_CONTEXT_MINOR_VERSION,
+                            3,
+                            EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                             EGL_NONE};
   EGLContext ctx = EGL_NO_CONTEXT;
   if (eglBindAPI(EGL_OPENGL_API))

@@ -38,8 +38,8 @@ std::vector<double> field_values(const Snapshot& s, Field f) {
 }
 
 std::pair<double, double> auto_range(const std::vector<double>& values,
-                                     const std::vector<std::uint8_t>& mask, Scale scale,
-                                     double plo, double phi) {
+                                     const std::vector<std::uint8_t>& mask, Scale scale, double plo,
+                                     double phi) {
   std::vector<double> x;
   x.reserve(values.size());
   for (std::size_t i = 0; i < values.size(); ++i)

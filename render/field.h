@@ -16,8 +16,8 @@ std::vector<double> field_values(const Snapshot& s, Field f);
 // Robust range: the [plo, phi] percentiles of values[i] with mask[i] set (positive ones only
 // on a log scale); widened when empty or degenerate so that it is always lo < hi.
 std::pair<double, double> auto_range(const std::vector<double>& values,
-                                     const std::vector<std::uint8_t>& mask, Scale scale,
-                                     double plo, double phi);
+                                     const std::vector<std::uint8_t>& mask, Scale scale, double plo,
+                                     double phi);
 
 // Position of v within [lo, hi] on the scale, in [0, 1] (clamped).
 double normalise(double v, std::pair<double, double> range, Scale scale);

@@ -27,9 +27,21 @@ class OSMesaContextImpl final : public GLContext {
 }  // namespace
 
 std::unique_ptr<GLContext> create_osmesa_context(std::string& why) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_ACCUM_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         3,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         3,
+                         0};
   OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!ctx) {
     why = "OSMesaCreateContextAttribs refused a 3.3 core context";

@@ -114,8 +114,8 @@ BarRect OverlayPainter::colorbar(Image& img, const Colormap& cmap, std::pair<dou
     const double t = normalise(v, range, scale);
     const int y = r.y1 - 1 - static_cast<int>(std::lround(t * (bar_h - 1)));
     fill_rect(img, r.x1, y, r.x1 + tick_len, y + 1 + u / 16, c.text);
-    font_.draw(img, r.x1 + tick_len + gap, y + (font_.ascent() - font_.descent()) / 2,
-               tick_text(v), c.text);
+    font_.draw(img, r.x1 + tick_len + gap, y + (font_.ascent() - font_.descent()) / 2, tick_text(v),
+               c.text);
   }
   font_.draw(img, l.title_x, l.title_base, label, c.text);
   return r;
@@ -162,8 +162,8 @@ void OverlayPainter::scale_bar(Image& img, double pixels_per_unit, const Overlay
   const std::string text = tick_text(len) + " diameters";
   const int th = std::max(2, u / 5);
   const int y = img.height - u;
-  fill_rect(img, u / 2, y - font_.ascent() - font_.descent() - u / 2, u + std::max(px, font_.width(text)) + u / 2,
-            y + th + u / 2, c.panel, 0.8f);
+  fill_rect(img, u / 2, y - font_.ascent() - font_.descent() - u / 2,
+            u + std::max(px, font_.width(text)) + u / 2, y + th + u / 2, c.panel, 0.8f);
   fill_rect(img, u, y, u + px, y + th, c.text);
   font_.draw(img, u, y - u / 4 - font_.descent(), text, c.text);
 }

@@ -34,8 +34,8 @@ class OverlayPainter {
  public:
   explicit OverlayPainter(const std::string& font_path) : font_(font_path) {}
 
-  BarRect colorbar(Image& img, const Colormap& cmap, std::pair<double, double> range,
-                   Scale scale, const std::string& label, const OverlayColours& c);
+  BarRect colorbar(Image& img, const Colormap& cmap, std::pair<double, double> range, Scale scale,
+                   const std::string& label, const OverlayColours& c);
   // Pixels the colour bar's panel takes from the right edge, so a fitted scene can keep clear.
   int colorbar_width(int width, int height, std::pair<double, double> range, Scale scale,
                      const std::string& label);

@@ -40,9 +40,9 @@ bool write_file(std::FILE* f, const Image& img, ::png_text* chunks, int nchunks,
   }
   png_init_io(png, f);
   png_set_compression_level(png, level);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width),
-               static_cast<png_uint_32>(img.height), 8, PNG_COLOR_TYPE_RGB_ALPHA,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height),
+               8, PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
   if (nchunks > 0) png_set_text(png, info, chunks, nchunks);
   png_set_rows(png, info, rows);
   png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);

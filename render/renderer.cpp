@@ -181,8 +181,8 @@ std::string fmt(const char* f, double v) {
 }  // namespace
 
 Rgb8 overlay_colour(std::size_t index) {
-  static const Rgb8 k[] = {{0, 114, 178},  {230, 159, 0},   {0, 158, 115}, {204, 121, 167},
-                           {213, 94, 0},   {86, 180, 233},  {240, 228, 66}};
+  static const Rgb8 k[] = {{0, 114, 178}, {230, 159, 0},  {0, 158, 115}, {204, 121, 167},
+                           {213, 94, 0},  {86, 180, 233}, {240, 228, 66}};
   return k[index % std::size(k)];
 }
 
@@ -308,8 +308,10 @@ struct Renderer::Impl {
     GLuint rb = 0;
     gl.GenRenderbuffers(1, &rb);
     gl.BindRenderbuffer(GL_RENDERBUFFER, rb);
-    if (samples > 0) gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, w, h);
-    else gl.RenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+    if (samples > 0)
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, w, h);
+    else
+      gl.RenderbufferStorage(GL_RENDERBUFFER, format, w, h);
     return rb;
   }
 
@@ -356,11 +358,14 @@ struct Renderer::Impl {
     // Orphan and refill: the driver need not wait for the previous frame's draw.
     if (bytes > vbo_bytes) vbo_bytes = std::max(bytes, vbo_bytes * 3 / 2);
     gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vbo_bytes), nullptr, GL_STREAM_DRAW);
-    if (bytes) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances.data());
+    if (bytes)
+      gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances.data());
   }
 };
 
-Renderer::Renderer(Backend backend) : impl_(std::make_unique<Impl>()) { impl_->init(backend); }
+Renderer::Renderer(Backend backend) : impl_(std::make_unique<Impl>()) {
+  impl_->init(backend);
+}
 
 Renderer::~Renderer() {
   if (!impl_ || !impl_->ctx) return;
@@ -374,9 +379,15 @@ Renderer::~Renderer() {
   gl.DeleteProgram(impl_->sphere_prog);
 }
 
-const RenderInfo& Renderer::last() const { return impl_->info; }
-int Renderer::max_size() const { return impl_->max_size; }
-const char* Renderer::backend_name() const { return impl_->ctx->backend_name(); }
+const RenderInfo& Renderer::last() const {
+  return impl_->info;
+}
+int Renderer::max_size() const {
+  return impl_->max_size;
+}
+const char* Renderer::backend_name() const {
+  return impl_->ctx->backend_name();
+}
 
 Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& style,
                        const View& view) {
@@ -388,7 +399,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   const Colormap cmap = Colormap::by_name(style.colormap);
   const int dim = snaps.front()->info.dim;
   for (const Snapshot* s : snaps)
-    if (s->info.dim != dim) throw UserError("snapshots of different dimensions cannot share a picture");
+    if (s->info.dim != dim)
+      throw UserError("snapshots of different dimensions cannot share a picture");
   const bool three_d = dim == 3;
   const bool overlay = snaps.size() > 1;
   const Palette pal = palette(style.background);
@@ -460,7 +472,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     const bool all = std::none_of(snaps.begin(), snaps.end(), [](const Snapshot* s) {
       return std::find(s->active.begin(), s->active.end(), 1) != s->active.end();
     });
-    if (wrap) r2 = (fit.sizes() / 2).squaredNorm();
+    if (wrap)
+      r2 = (fit.sizes() / 2).squaredNorm();
     else
       for (const Snapshot* s : snaps)
         for (std::size_t i = 0; i < s->size(); ++i)
@@ -510,8 +523,10 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c) {
     if (!cam.visible(p, r)) return;
     const Eigen::Vector3d d = p - cam.origin;
-    const Instance v{static_cast<float>(d.x()), static_cast<float>(d.y()),
-                     static_cast<float>(three_d ? d.z() : 0.0), static_cast<float>(r),
+    const Instance v{static_cast<float>(d.x()),
+                     static_cast<float>(d.y()),
+                     static_cast<float>(three_d ? d.z() : 0.0),
+                     static_cast<float>(r),
                      {c[0], c[1], c[2], 255}};
     m.instances.insert(m.instances.end(), per_particle, v);
   };
@@ -552,8 +567,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     const GLuint prog = points ? m.point_prog : m.disc_prog;
     gl.Enable(GL_PROGRAM_POINT_SIZE);
     gl.UseProgram(prog);
-    gl.Uniform1f(gl.GetUniformLocation(prog, "ppu"),
-                 static_cast<float>(cam.pixels_per_unit()));
+    gl.Uniform1f(gl.GetUniformLocation(prog, "ppu"), static_cast<float>(cam.pixels_per_unit()));
     const GLint loc = gl.GetUniformLocation(prog, "scale");
     const double pad_units = pad / cam.pixels_per_unit();
     gl.Uniform2f(loc, static_cast<float>(1 / (cam.half_w + pad_units)),
@@ -563,8 +577,10 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
-    if (samples > 0) gl.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    else gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (samples > 0)
+      gl.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    else
+      gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl.UseProgram(m.sphere_prog);
     const Eigen::Matrix4f view_f = cam.view.cast<float>(), proj_f = cam.proj.cast<float>();
     gl.UniformMatrix4fv(gl.GetUniformLocation(m.sphere_prog, "view"), 1, GL_FALSE, view_f.data());

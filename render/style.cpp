@@ -20,9 +20,12 @@ Background parse_background(const std::string& name) {
 
 const char* field_label(Field f) {
   switch (f) {
-    case Field::Speed: return "speed |v|";
-    case Field::RadialVelocity: return "radial velocity v_r";
-    case Field::FirstCollision: return "first collision time";
+    case Field::Speed:
+      return "speed |v|";
+    case Field::RadialVelocity:
+      return "radial velocity v_r";
+    case Field::FirstCollision:
+      return "first collision time";
   }
   return "";
 }

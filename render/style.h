@@ -24,15 +24,15 @@ struct Style {
   Background background = Background::Light;
   bool colorbar = true;
   bool time_label = true;
-  bool scale_bar = false;  // 2D only: a length in particle diameters
-  bool legend = true;      // multi-snapshot overlay: one colour per time
-  int msaa = 4;            // samples per pixel for 3D spheres (2D discs antialias in the shader)
+  bool scale_bar = false;     // 2D only: a length in particle diameters
+  bool legend = true;         // multi-snapshot overlay: one colour per time
+  int msaa = 4;               // samples per pixel for 3D spheres (2D discs antialias in the shader)
   double splat_below_px = 2;  // 2D discs of smaller radius (pixels) are drawn on the CPU
   std::string font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 };
 
 // Parses the command-line words; UserError naming the word otherwise.
-Field parse_field(const std::string& name);      // speed | radial-velocity | first-collision
+Field parse_field(const std::string& name);            // speed | radial-velocity | first-collision
 Background parse_background(const std::string& name);  // light | dark
 const char* field_label(Field f);
 

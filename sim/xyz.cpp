@@ -31,7 +31,9 @@ std::string not_a(std::string_view tok, const char* kind, std::string_view name)
   return m;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
 
 std::vector<std::string_view> split_ws(std::string_view s) {
   std::vector<std::string_view> out;
@@ -128,8 +130,8 @@ std::vector<Column> parse_properties(const std::string& spec, const Reader& r) {
   for (std::size_t k = 0; k < parts.size(); k += 3) {
     Column c;
     c.name = parts[k];
-    if (parts[k + 1].size() != 1 || std::string_view("SRIL").find(parts[k + 1][0]) ==
-                                        std::string_view::npos)
+    if (parts[k + 1].size() != 1 ||
+        std::string_view("SRIL").find(parts[k + 1][0]) == std::string_view::npos)
       r.fail(2, "property '" + c.name + "' has unknown type '" + parts[k + 1] + "'");
     c.type = parts[k + 1][0];
     c.count = static_cast<int>(r.integer(parts[k + 2], 2, "property count"));
@@ -141,7 +143,8 @@ std::vector<Column> parse_properties(const std::string& spec, const Reader& r) {
   return cols;
 }
 
-const Column* find_column(const std::vector<Column>& cols, std::initializer_list<const char*> names) {
+const Column* find_column(const std::vector<Column>& cols,
+                          std::initializer_list<const char*> names) {
   for (const auto& c : cols)
     for (const char* n : names)
       if (iequals(c.name, n)) return &c;
@@ -222,8 +225,7 @@ Snapshot read_xyz(const std::string& path) {
   const Column* c_rad = find_column(cols, {"radius", "radii"});
   const Column* c_act = find_column(cols, {"active"});
   const Column* c_first = find_column(cols, {"first_collision"});
-  if (!c_pos || c_pos->type != 'R' || c_pos->count != 3)
-    r.fail(2, "Properties needs pos:R:3");
+  if (!c_pos || c_pos->type != 'R' || c_pos->count != 3) r.fail(2, "Properties needs pos:R:3");
   if (c_vel && (c_vel->type != 'R' || c_vel->count != 3)) r.fail(2, "velo must be R:3");
   if (c_rad && (c_rad->type != 'R' || c_rad->count != 1)) r.fail(2, "radius must be R:1");
   if (c_act && ((c_act->type != 'I' && c_act->type != 'L') || c_act->count != 1))
@@ -246,8 +248,8 @@ Snapshot read_xyz(const std::string& path) {
                       " particle lines, found " + std::to_string(i));
     tok = split_ws(line);
     if (tok.size() != ntok)
-      r.fail(line_no, "expected " + std::to_string(ntok) + " columns, found " +
-                          std::to_string(tok.size()));
+      r.fail(line_no,
+             "expected " + std::to_string(ntok) + " columns, found " + std::to_string(tok.size()));
     for (int k = 0; k < 3; ++k) s.position[i][k] = r.real(tok[c_pos->first + k], line_no, "pos");
     if (c_vel)
       for (int k = 0; k < 3; ++k) s.velocity[i][k] = r.real(tok[c_vel->first + k], line_no, "velo");
@@ -261,7 +263,8 @@ Snapshot read_xyz(const std::string& path) {
     if (c_first) s.first_collision[i] = r.real(tok[c_first->first], line_no, "first_collision");
     for (int k = s.info.dim; k < 3; ++k)
       if (s.position[i][k] != 0 || (c_vel && s.velocity[i][k] != 0))
-        r.fail(line_no, "Dim=" + std::to_string(s.info.dim) + " but a component beyond it is not 0");
+        r.fail(line_no,
+               "Dim=" + std::to_string(s.info.dim) + " but a component beyond it is not 0");
   }
   return s;
 }
@@ -278,8 +281,10 @@ void write_xyz(const std::string& path, const Snapshot& s) {
   out += "\nLattice=\"";
   for (int k = 0; k < 9; ++k) {
     if (k) out += ' ';
-    if (k % 4 == 0) append_number(out, s.info.box);
-    else out += '0';
+    if (k % 4 == 0)
+      append_number(out, s.info.box);
+    else
+      out += '0';
   }
   out += "\" Properties=species:S:1:pos:R:3";
   if (s.has_velocity()) out += ":velo:R:3";

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "render/png.h"
@@ -50,12 +50,14 @@ std::string write(const std::string& name, const std::string& text) {
 }
 
 const std::string kHeader =
-    "Lattice=\"20 0 0 0 20 0 0 0 20\" Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:active:I:1 "
+    "Lattice=\"20 0 0 0 20 0 0 0 20\" "
+    "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:active:I:1 "
     "Time=12.5 pbc=\"T T T\" Dim=2 Density=0.25 Restitution=0.1 Cutoff=0.0001 Speed=1 Seed=42\n";
 
 std::string good_snapshot() {
-  return write("good.xyz", "3\n" + kHeader +
-                               "X 1 1 0 0.1 0 0 0.5 1\nX 3 1 0 0.5 0 0 0.5 1\nX 5 2 0 0 0 0 0.5 0\n");
+  return write(
+      "good.xyz",
+      "3\n" + kHeader + "X 1 1 0 0.1 0 0 0.5 1\nX 3 1 0 0.5 0 0 0.5 1\nX 5 2 0 0 0 0 0.5 0\n");
 }
 
 // No PNG and no temporary file of one may be left in the folder after a failure.
@@ -101,9 +103,9 @@ TEST(RenderCli, BadInputGivesOneLineAndNoPng) {
   expect_one_line_error((dir() / "missing.xyz").string(), "missing.xyz");
   expect_one_line_error(write("truncated.xyz", "3\n" + kHeader + "X 1 1 0 0.1 0 0 0.5 1\n"),
                         "truncated");
-  expect_one_line_error(write("malformed.xyz", "2\n" + kHeader +
-                                                   "X 1 1 0 0.1 0 0 0.5 1\nX 1 one 0 0 0 0 0.5 1\n"),
-                        "line 4");
+  expect_one_line_error(
+      write("malformed.xyz", "2\n" + kHeader + "X 1 1 0 0.1 0 0 0.5 1\nX 1 one 0 0 0 0 0.5 1\n"),
+      "line 4");
   expect_one_line_error(
       write("no_velocity.xyz", "1\nProperties=species:S:1:pos:R:3 Dim=2\nX 1 1 0\n"),
       "no velocities");

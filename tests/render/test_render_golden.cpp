@@ -166,8 +166,7 @@ std::pair<int, int> pixel_of(const Eigen::Vector3d& p, const View& v) {
 }
 
 void expect_colour(const std::uint8_t* px, Rgb8 want, const std::string& what) {
-  for (int k = 0; k < 3; ++k)
-    EXPECT_NEAR(px[k], want[k], 2) << what << " channel " << k;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(px[k], want[k], 2) << what << " channel " << k;
 }
 
 TEST(RenderStructure, IsolatedDiscCentreHasItsColormapColour) {

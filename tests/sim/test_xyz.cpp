@@ -116,21 +116,25 @@ TEST(Xyz, RejectsBadInputNamingFileAndLine) {
   EXPECT_NE(msg.find(truncated), std::string::npos) << msg;
   EXPECT_NE(msg.find("truncated"), std::string::npos) << msg;
 
-  const auto short_line = write_text("short_line.xyz", head + "X 0 0 0 1 0 0\nX 1 1 0\nX 0 0 0 0 0 0\n");
+  const auto short_line =
+      write_text("short_line.xyz", head + "X 0 0 0 1 0 0\nX 1 1 0\nX 0 0 0 0 0 0\n");
   msg = read_error(short_line);
   EXPECT_NE(msg.find("line 4"), std::string::npos) << msg;
 
-  const auto bad_number = write_text("bad_number.xyz", head + "X 0 0 0 1 0 0\nX 1 1 0 0 0 0\nX 1 zz 0 0 0 0\n");
+  const auto bad_number =
+      write_text("bad_number.xyz", head + "X 0 0 0 1 0 0\nX 1 1 0 0 0 0\nX 1 zz 0 0 0 0\n");
   msg = read_error(bad_number);
   EXPECT_NE(msg.find("line 5"), std::string::npos) << msg;
   EXPECT_NE(msg.find("zz"), std::string::npos) << msg;
 
-  EXPECT_NE(read_error(write_text("nan.xyz", head + "X nan 0 0 1 0 0\nX 1 1 0 0 0 0\nX 1 1 0 0 0 0\n"))
-                .find("line 3"),
-            std::string::npos);
-  EXPECT_NE(read_error(write_text("z_in_2d.xyz", head + "X 0 0 1 1 0 0\nX 1 1 0 0 0 0\nX 1 1 0 0 0 0\n"))
-                .find("line 3"),
-            std::string::npos);
+  EXPECT_NE(
+      read_error(write_text("nan.xyz", head + "X nan 0 0 1 0 0\nX 1 1 0 0 0 0\nX 1 1 0 0 0 0\n"))
+          .find("line 3"),
+      std::string::npos);
+  EXPECT_NE(
+      read_error(write_text("z_in_2d.xyz", head + "X 0 0 1 1 0 0\nX 1 1 0 0 0 0\nX 1 1 0 0 0 0\n"))
+          .find("line 3"),
+      std::string::npos);
   EXPECT_NE(read_error(write_text("count.xyz", "three\n\n")).find("line 1"), std::string::npos);
   EXPECT_NE(read_error(write_text("empty.xyz", "")), "accepted");
   EXPECT_NE(read_error(write_text("no_comment.xyz", "1\n")).find("line 2"), std::string::npos);
