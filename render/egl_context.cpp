@@ -16,8 +16,9 @@ class EGLContextImpl final : public GLContext {
   EGLContextImpl(EGLDisplay dpy, EGLContext ctx) : dpy_(dpy), ctx_(ctx) {}
   ~EGLContextImpl() override {
     eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    // No eglTerminate: the surfaceless display is one per process and another renderer may
+    // still be using it; terminating is not reference-counted.
     eglDestroyContext(dpy_, ctx_);
-    eglTerminate(dpy_);
   }
   bool bind() { return eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_); }
   void* proc(const char* name) const override {
@@ -57,7 +58,6 @@ std::unique_ptr<GLContext> create_egl_context(std::string& why) {
   if (eglBindAPI(EGL_OPENGL_API))
     ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
   if (ctx == EGL_NO_CONTEXT) {
-    eglTerminate(dpy);
     why = "eglCreateContext refused a 3.3 core context";
     return nullptr;
   }

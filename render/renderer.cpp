@@ -518,7 +518,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   const int pad = points ? margin : 0;
   const int per_particle = points || splat ? 1 : 4;
 
-  // Instances: inactive (if shown) first so the 2D discs of active ones lie on top.
+  // Instances: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
+  // the 2D discs of active ones lie on top.
   m.instances.clear();
   auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c) {
     if (!cam.visible(p, r)) return;
