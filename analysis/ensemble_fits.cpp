@@ -10,6 +10,7 @@ namespace gs {
 namespace {
 
 constexpr double kStartActive = 20;  // automatic windows start once <N_t> reaches this
+constexpr double kLateDecades = 1.5;  // automatic windows lie within the last 1.5 decades
 
 }  // namespace
 
@@ -53,9 +54,18 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
       if (o.window) {
         w = *o.window;
       } else {
+        // The asymptotic regime is the late one: the search is confined to the last
+        // kLateDecades, so that a transient plateau (e.g. N_t ~ t^1 before the band forms in 3D)
+        // cannot win by being long. No plateau there: the last decade, said so in the note.
         AutoWindowOptions ao;
-        ao.t_min = t_start;
-        w = auto_window(t, y, ao);
+        ao.t_min = std::max(t_start, t.back() * std::pow(10.0, -kLateDecades));
+        try {
+          w = auto_window(t, y, ao);
+        } catch (const UserError&) {
+          w = {std::max(t_start, t.back() / 10), t.back()};
+          e.note = "the local slope drifts by more than +-0.05 over the last 1.5 decades; fit over "
+                   "the last decade";
+        }
       }
       if (sums.count() >= 2) {
         std::vector<std::vector<double>> curves;

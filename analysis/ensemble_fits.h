@@ -2,8 +2,9 @@
 // The numbers an ensemble is for (Jabeen, Rajesh, Ray, EPL 2010):
 //  - exponents of N_t ~ t^(alpha d), E_t ~ t^(alpha d + 2 alpha - 2), R_t ~ t^alpha and
 //    v_t ~ t^(alpha - 1): a least-squares line of ln <y> against ln t over a scaling window (given,
-//    or the longest range where the local slope of <y> stays within +-0.05, from the time the
-//    mean N_t reaches 20), with a 95% percentile interval from 1000 bootstrap resamples of the
+//    or the longest range within the last 1.5 decades, and after the mean N_t reaches 20, where
+//    the local slope of <y> stays within +-0.05; without one, the last decade), with a 95%
+//    percentile interval from 1000 bootstrap resamples of the
 //    realisations (M >= 2); each gives an estimate of alpha to compare with 1/(d+1) (r < 1) or
 //    2/(d+2) (r = 1);
 //  - t_c1: the time from which the local slope of <N_t> stays within 10% of alpha d

@@ -126,8 +126,9 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  ],\n";
   j << "  \"exponent_definition\": "
     << json_string("least-squares slope of ln <y> vs ln t over the window (automatic: longest range "
-                   "where the local slope stays within +-0.05, after <N_t> >= 20); interval: 95% "
-                   "percentile bootstrap over realisations (1000 resamples)")
+                   "within the last 1.5 decades, after <N_t> >= 20, where the local slope stays "
+                   "within +-0.05, else the last decade); interval: 95% percentile bootstrap over "
+                   "realisations")
     << ",\n";
   j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";

@@ -71,6 +71,13 @@ struct Comparison {
 
 std::string rtext(double r) { return format_number(r); }
 
+std::string fmt(double x, int digits = 4) {
+  if (!std::isfinite(x)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
 // --- Fig. 1: frames from the renderer -----------------------------------------------------------
 
 std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
@@ -119,7 +126,7 @@ std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
 std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int d, bool elastic) {
   std::vector<const CaseResult*> out;
   for (const auto& c : all)
-    if (c.plan->spec.physics.dim == d && (c.plan->spec.physics.restitution == 1.0) == elastic)
+    if (!c.plan->delta_scan && c.plan->spec.physics.dim == d && (c.plan->spec.physics.restitution == 1.0) == elastic)
       out.push_back(&c);
   return out;
 }
@@ -129,7 +136,7 @@ std::string fig2(const std::vector<CaseResult>& all, const fs::path& dir) {
   for (const char* n : {"d", "r", "t", "t_paper", "A", "A_sem"}) t.add_column(n, {});
   std::string plot;
   for (const auto& c : all) {
-    if (c.plan->spec.physics.dim != 2) continue;
+    if (c.plan->spec.physics.dim != 2 || c.plan->delta_scan) continue;
     const Table ts = c.sums.timeseries();
     const double r = c.plan->spec.physics.restitution;
     for (std::size_t i = 0; i < ts.rows(); ++i) {
@@ -294,6 +301,71 @@ std::string fig_crossover(const std::vector<CaseResult>& all, const fs::path& di
   return run_gnuplot(dir, "fig6_crossover.gp", gp);
 }
 
+// t_c2 against delta: the time from which the local slope of <N_t> leaves the 10% band around
+// alpha d for good (towards the elastic 2/(d+2) d), searched from <N_t> >= 20 on.
+std::string fig_delta(const std::vector<CaseResult>& all, const fs::path& dir,
+                      std::vector<Comparison>& cmp, std::ostringstream& notes) {
+  Table t;
+  for (const char* n : {"delta", "t_c2", "t_c2_paper"}) t.add_column(n, {});
+  std::vector<double> x, y;
+  for (const auto& c : all) {
+    if (!c.plan->delta_scan) continue;
+    const auto& p = c.plan->spec.physics;
+    const Table ts = c.sums.timeseries();
+    const auto& tt = ts.column("t");
+    const auto& n = ts.column("active");
+    SlopeCrossoverOptions o;
+    o.target = theory_alpha(p) * p.dim;
+    for (std::size_t i = 0; i < n.size(); ++i)
+      if (n[i] >= 20) {
+        o.t_lo = tt[i];
+        break;
+      }
+    const Crossover tc2 = crossover_leave(tt, n, o);
+    if (!tc2.found) {
+      notes << "- t_c2 not found for delta = " << fmt(p.cutoff) << ": " << tc2.note << "\n";
+      continue;
+    }
+    notes << "- t_c2(delta = " << fmt(p.cutoff) << ") = " << fmt(tc2.time) << " (2D, r = 0.1, "
+          << c.sums.count() << " realisations)\n";
+    x.push_back(p.cutoff);
+    y.push_back(tc2.time);
+    const std::vector<double> row = {p.cutoff, tc2.time, p.paper_time(tc2.time)};
+    t.add_row(row);
+  }
+  Comparison phi;
+  phi.quantity = "phi2";
+  phi.d = 2;
+  phi.r = 0.1;
+  phi.theory = 1.5;
+  phi.tolerance = 0.3;
+  phi.source = "paper: t_c2 ~ delta^-phi2, phi2 = 1/(1-alpha) = 3/2 in 2D";
+  std::string fitline;
+  if (x.size() >= 3) {
+    const CrossoverExponent e = fit_crossover_exponent(x, y);
+    phi.measured = e.phi;
+    phi.uncertainty = e.standard_error;
+    phi.note = "least-squares fit of ln t_c2 against ln delta over delta = 1e-2, 3e-3, 1e-3; "
+               "uncertainty: standard error of the slope";
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "T(x) = %.6g*x**(-%.6g)\n", e.prefactor, e.phi);
+    fitline = buf;
+  } else {
+    phi.note = "fewer than 3 values of t_c2 found";
+  }
+  cmp.push_back(phi);
+  write_csv(t, dir / "fig7_tc2_delta.csv");
+  std::string gp = gnuplot_preamble("fig7_tc2_delta.png", 900, 650);
+  gp += fitline;
+  gp += "set title 'Crossover time t_{c2} against the cutoff delta (2D, r = 0.1; paper: phi_2 = 3/2)'\n"
+        "set logscale xy\nset xlabel 'delta'\nset ylabel 't_{c2} (simulation units)'\nset key top right\n"
+        "plot 'fig7_tc2_delta.csv' skip 1 using 1:2 with points pt 7 ps 1.5 title 'slope rule'";
+  if (!fitline.empty())
+    gp += ", \\\n     T(x) with lines dt 2 title sprintf('fit: phi_2 = %.2f', " + format_double(phi.measured) + ")";
+  gp += "\n";
+  return run_gnuplot(dir, "fig7_tc2_delta.gp", gp);
+}
+
 // --- Comparisons ---------------------------------------------------------------------------------
 
 void add_comparisons(const CaseResult& c, std::vector<Comparison>& out) {
@@ -379,13 +451,6 @@ std::string comparisons_json(const std::vector<Comparison>& cmp) {
   }
   j << "  ]";
   return j.str();
-}
-
-std::string fmt(double x, int digits = 4) {
-  if (!std::isfinite(x)) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
 }
 
 // --- The command ---------------------------------------------------------------------------------
@@ -474,7 +539,7 @@ void run(const FiguresOptions& o) {
     fs::create_directories(edir);
     CaseResult cr{&c, std::move(r.sums), {}, since(tc)};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
-    add_comparisons(cr, cmp);
+    if (!c.delta_scan) add_comparisons(cr, cmp);
     results.push_back(std::move(cr));
   }
   progress.done();
@@ -489,15 +554,17 @@ void run(const FiguresOptions& o) {
   check(fig2(results, dir));
   check(fig3(results, dir));
   for (const auto& c : results)
-    if (c.plan->spec.physics.restitution == 0.1)
+    if (c.plan->spec.physics.restitution == 0.1 && !c.plan->delta_scan)
       check(fig_collapse(c, dir, c.plan->spec.physics.dim == 2 ? "fig4_collapse_2d" : "fig5_collapse_3d",
                          c.plan->spec.physics.dim == 2 ? 4 : 5));
   check(fig_crossover(results, dir, cmp, notes));
+  check(fig_delta(results, dir, cmp, notes));
   const double wall = since(t0);
 
   // t_c2 where the data reach it.
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
+    if (c.plan->delta_scan) continue;
     if (p.restitution < 1 && !c.fits.tc2.found)
       notes << "- t_c2 (d = " << p.dim << ", r = " << rtext(p.restitution)
             << ") not reached by t_max = " << fmt(p.t_max) << ": v_t is still far above delta = "
@@ -553,7 +620,8 @@ void run(const FiguresOptions& o) {
         "0.5 for phi1, 0.02 for the packing (the paper's range 0.78-0.82), 0.05 for A -> 0 and for Q; for "
         "'< 1', measured - uncertainty < 1.\n\n## Definitions\n\n"
         "- alpha from X: the exponent of <X> fitted as a straight line of ln <X> against ln t over a scaling "
-        "window (the longest range where the local log-slope stays within +-0.05, once <N_t> >= 20), turned "
+        "window (the longest range within the last 1.5 decades, once <N_t> >= 20, where the local log-slope "
+        "stays within +-0.05; without one, the last decade), turned "
         "into alpha by N ~ t^(alpha d), E ~ t^(alpha d + 2 alpha - 2), R ~ t^alpha, v ~ t^(alpha-1); the "
         "uncertainty is half the 95% percentile interval of 1000 bootstrap resamples of the realisations.\n"
         "- t_c1: the time from which the local slope of <N_t> stays within 10% of alpha d (slope rule); "
@@ -576,6 +644,7 @@ void run(const FiguresOptions& o) {
         "- fig4_collapse_2d.{png,csv,gp}, fig5_collapse_3d.{png,csv,gp}: scaled P(R,t), P(v,t) for r = 0.1 "
         "(Figs. 4, 5).\n"
         "- fig6_crossover.{png,csv,gp}: t_c1 against 1 - r^2 and the phi1 fits.\n"
+        "- fig7_tc2_delta.{png,csv,gp}: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 fit.\n"
         "- summary.json: every comparison as {quantity, d, r, measured, uncertainty, theory, agrees}.\n"
         "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
   write_file_atomic(dir / "report.md", md.str());

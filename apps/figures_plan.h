@@ -15,6 +15,9 @@ enum class FiguresMode { Tiny, Quick, Full };
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
   EnsembleSpec spec;
+  // Part of the scan of the cutoff delta (2D, r = 0.1) that measures t_c2 ~ delta^-phi2; these
+  // cases appear in no figure of the paper, only in fig7 and the phi2 comparison.
+  bool delta_scan = false;
 };
 
 struct FiguresPlan {

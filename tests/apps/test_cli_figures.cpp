@@ -27,7 +27,7 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* png : {"fig1a_overlay_r0.1.png", "fig1b_elastic_r1.png"})
     EXPECT_TRUE(is_png(dir / png)) << png;
   for (const char* base : {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d",
-                           "fig5_collapse_3d", "fig6_crossover"}) {
+                           "fig5_collapse_3d", "fig6_crossover", "fig7_tc2_delta"}) {
     const std::string b(base);
     EXPECT_TRUE(is_png(dir / (b + ".png"))) << b;
     EXPECT_TRUE(fs::exists(dir / (b + ".csv"))) << b;
@@ -45,7 +45,7 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
                           "\"theory\"", "\"agrees\"", "\"wall_seconds\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "band packing (typical)",
+  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "phi2", "band packing (typical)",
                         "band packing (upper, 90% quantile)", "A(t_max)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   const std::string report = read_file(dir / "report.md");
