@@ -78,6 +78,11 @@ std::string fmt(double x, int digits = 4) {
   return buf;
 }
 
+// A plot that says why it is empty (gnuplot refuses to plot a file without points).
+std::string no_data_plot(const std::string& csv, const std::string& why) {
+  return "# " + csv + " has no rows: " + why + "\nset label 1 '" + why + "' at graph 0.5, 0.5 center\nunset key\nplot [0:1][0:1] -1 notitle\n";
+}
+
 // --- Fig. 1: frames from the renderer -----------------------------------------------------------
 
 std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
@@ -294,6 +299,7 @@ std::string fig_crossover(const std::vector<CaseResult>& all, const fs::path& di
   }
   write_csv(t, dir / "fig6_crossover.csv");
   std::string gp = gnuplot_preamble("fig6_crossover.png", 900, 650);
+  if (t.rows() == 0) return run_gnuplot(dir, "fig6_crossover.gp", gp + no_data_plot("fig6_crossover.csv", "no t_c1 found in these runs"));
   gp += fits;
   gp += "set title 'Crossover time t_{c1} against 1 - r^2 (paper: phi_1 = 2.25 in 2D, 3.0 in 3D)'\n"
         "set logscale xy\nset xlabel '1 - r^2'\nset ylabel 't_{c1} (simulation units)'\nset key top right\n"
@@ -356,6 +362,7 @@ std::string fig_delta(const std::vector<CaseResult>& all, const fs::path& dir,
   cmp.push_back(phi);
   write_csv(t, dir / "fig7_tc2_delta.csv");
   std::string gp = gnuplot_preamble("fig7_tc2_delta.png", 900, 650);
+  if (t.rows() == 0) return run_gnuplot(dir, "fig7_tc2_delta.gp", gp + no_data_plot("fig7_tc2_delta.csv", "no t_c2 reached in these runs"));
   gp += fitline;
   gp += "set title 'Crossover time t_{c2} against the cutoff delta (2D, r = 0.1; paper: phi_2 = 3/2)'\n"
         "set logscale xy\nset xlabel 'delta'\nset ylabel 't_{c2} (simulation units)'\nset key top right\n"
