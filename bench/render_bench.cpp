@@ -127,6 +127,15 @@ void add_render_cases(std::vector<Case>& cases) {
                      v.slab = 6;
                      return measure(s, st, v, "<= 1 s");
                    }});
+  cases.push_back({"render/spheres_2e6_whole",
+                   "3D, 2e6 spheres, all shown (occlusion culling), 1920x1080", true, [] {
+                     const auto s = synthetic(3, 2000000, 200, 60, 64);
+                     render::Style st;
+                     st.show_inactive = true;
+                     render::View v = full_hd();
+                     v.framing = render::Framing::Box;
+                     return measure(s, st, v, "<= 1 s");
+                   }});
 }
 
 }  // namespace gs::bench

@@ -9,6 +9,7 @@
 #include "render/colormap.h"
 #include "render/field.h"
 #include "render/gl_api.h"
+#include "render/occlusion.h"
 #include "sim/error.h"
 
 namespace gs::render {
@@ -218,11 +219,46 @@ struct Renderer::Impl {
   int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
   int max_size = 0, max_samples = 0;
   float max_point_size = 1;
-  std::vector<Instance> instances;
+  std::vector<Instance> instances;  // one per particle
+  std::vector<Instance> vertices;   // four per particle for quads
+  std::vector<Instance> sorted;
+  std::vector<std::uint32_t> bucket_of, bucket_start;
+  OcclusionBuffer occlusion;
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;
   std::string painter_font;
   RenderInfo info;
+
+  // Sorts the spheres nearest first (bucket sort on the nearest depth) and keeps those the
+  // occlusion buffer cannot prove hidden.
+  void cull_occluded(const Camera& cam) {
+    const std::size_t n = instances.size();
+    if (n == 0) return;
+    const double fy = cam.height / (2 * cam.tan_half_y), fx = cam.width / (2 * cam.tan_half_x);
+    constexpr std::uint32_t kBuckets = 4096;
+    const double scale = kBuckets / (cam.far - cam.near);
+    bucket_of.resize(n);
+    bucket_start.assign(kBuckets + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Instance& v = instances[i];
+      const double depth =
+          -(cam.view.row(2).head<3>().dot(Eigen::Vector3d(v.x, v.y, v.z)) + cam.view(2, 3));
+      const double b = std::clamp((depth - v.r - cam.near) * scale, 0.0, kBuckets - 1.0);
+      bucket_of[i] = static_cast<std::uint32_t>(b);
+      ++bucket_start[bucket_of[i] + 1];
+    }
+    for (std::uint32_t b = 0; b < kBuckets; ++b) bucket_start[b + 1] += bucket_start[b];
+    sorted.resize(n);
+    for (std::size_t i = 0; i < n; ++i) sorted[bucket_start[bucket_of[i]]++] = instances[i];
+    occlusion.reset(cam.width, cam.height);
+    instances.clear();
+    for (const Instance& v : sorted) {
+      const Eigen::Vector4d e = cam.view * Eigen::Vector4d(v.x, v.y, v.z, 1);
+      if (occlusion.test_and_insert(
+              sphere_footprint(e.head<3>(), v.r, fx, fy, cam.width, cam.height)))
+        instances.push_back(v);
+    }
+  }
 
   OverlayPainter& overlay_painter(const std::string& font) {
     if (!painter || painter_font != font) {
@@ -339,7 +375,14 @@ struct Renderer::Impl {
   }
 
   void upload(bool quad_indices) {
-    const std::size_t quads = instances.size() / 4;
+    const std::vector<Instance>* data = &instances;
+    if (quad_indices) {
+      vertices.clear();
+      vertices.reserve(instances.size() * 4);
+      for (const Instance& v : instances) vertices.insert(vertices.end(), 4, v);
+      data = &vertices;
+    }
+    const std::size_t quads = instances.size();
     if (quad_indices && quads > ibo_quads) {
       // Two triangles per quad; the indices never change, so they grow but are never rewritten.
       ibo_quads = std::max(quads, ibo_quads * 3 / 2);
@@ -353,13 +396,12 @@ struct Renderer::Impl {
       gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)),
                     idx.data(), GL_STATIC_DRAW);
     }
-    const std::size_t bytes = instances.size() * sizeof(Instance);
+    const std::size_t bytes = data->size() * sizeof(Instance);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
     // Orphan and refill: the driver need not wait for the previous frame's draw.
     if (bytes > vbo_bytes) vbo_bytes = std::max(bytes, vbo_bytes * 3 / 2);
     gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vbo_bytes), nullptr, GL_STREAM_DRAW);
-    if (bytes)
-      gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances.data());
+    if (bytes) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data->data());
   }
 };
 
@@ -516,7 +558,6 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   const bool points = !three_d && !splat && sprite_px <= m.max_point_size &&
                       std::max(view.width, view.height) + 2 * margin <= m.max_size;
   const int pad = points ? margin : 0;
-  const int per_particle = points || splat ? 1 : 4;
 
   // Instances: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
   // the 2D discs of active ones lie on top.
@@ -529,7 +570,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
                      static_cast<float>(three_d ? d.z() : 0.0),
                      static_cast<float>(r),
                      {c[0], c[1], c[2], 255}};
-    m.instances.insert(m.instances.end(), per_particle, v);
+    m.instances.push_back(v);
   };
   if (style.show_inactive) {
     const Snapshot& s = *snaps.back();
@@ -548,7 +589,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
       push(wrapped(s.position[i]), s.radius[i], c);
     }
   }
-  m.info.drawn = m.instances.size() / per_particle;
+  if (three_d && style.occlusion_cull) m.cull_occluded(cam);
+  m.info.drawn = m.instances.size();
 
   const int samples = three_d ? std::min(std::max(style.msaa, 0), m.max_samples) : 0;
   m.ctx->make_current();
@@ -595,7 +637,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   } else if (points)
     gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m.instances.size()));
   else
-    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.instances.size() / 4 * 6), GL_UNSIGNED_INT,
+    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.instances.size() * 6), GL_UNSIGNED_INT,
                     nullptr);
   if (samples > 0) {
     gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);

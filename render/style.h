@@ -28,6 +28,7 @@ struct Style {
   bool legend = true;         // multi-snapshot overlay: one colour per time
   int msaa = 4;               // samples per pixel for 3D spheres (2D discs antialias in the shader)
   double splat_below_px = 2;  // 2D discs of smaller radius (pixels) are drawn on the CPU
+  bool occlusion_cull = true;  // 3D: skip spheres hidden behind nearer ones (exact)
   std::string font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 };
 

@@ -288,6 +288,30 @@ TEST(RenderStructure, CpuSplatsMatchGlDiscs) {
   }
 }
 
+// A dense cube seen whole: occlusion culling must drop most spheres and change no pixel that
+// matters.
+TEST(RenderStructure, OcclusionCullingIsExact) {
+  Snapshot s = empty_snapshot(3, 0, 0);
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k)
+        add(s, {1.2 * i, 1.2 * j, 1.2 * k}, {0.05 * ((i + 2 * j + 3 * k) % 20), 0, 0});
+  Style st = bare_style();
+  st.occlusion_cull = false;
+  const View v = small_view(384, 384);
+  const Image all = renderer().render(s, st, v);
+  const std::size_t drawn_all = renderer().last().drawn;
+  st.occlusion_cull = true;
+  const Image culled = renderer().render(s, st, v);
+  const std::size_t drawn_culled = renderer().last().drawn;
+  EXPECT_EQ(drawn_all, s.size());
+  // Three faces of 400 show, and a few layers behind them through the gaps: about a third.
+  EXPECT_LT(drawn_culled, drawn_all / 2);
+  const auto c = compare_images(culled, all);
+  EXPECT_TRUE(c.match()) << c.differing << " pixels differ, " << c.allowed << " allowed";
+  EXPECT_LT(c.differing, 10);
+}
+
 TEST(RenderErrors, RejectBadSizesStyleAndMissingData) {
   const Snapshot s = speed_gradient();
   auto throws = [&](Style st, View v) {
