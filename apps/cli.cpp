@@ -73,14 +73,24 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
       ->capture_default_str();
   sub.add_option("--t-max", c.t_max, "Final time in units of diameter / v0")
       ->capture_default_str();
-  sub.add_option("--initial", c.initial, "kick: one particle moves; thermal: Maxwell gas")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Initial>{{"kick", Initial::Kick}, {"thermal", Initial::Thermal}}))
-      ->default_str("kick");
-  sub.add_option("--kick-site", c.kick_site, "Which particle is kicked: random or centre")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, KickSite>{
-          {"random", KickSite::Random}, {"centre", KickSite::Centre}}))
-      ->default_str("random");
+  sub.add_option_function<std::string>(
+         "--initial",
+         [&c](const std::string& v) {
+           if (v != "kick" && v != "thermal")
+             throw CLI::ValidationError("--initial", "'" + v + "' is not kick or thermal");
+           c.initial = v == "kick" ? Initial::Kick : Initial::Thermal;
+         },
+         "kick: one particle moves; thermal: a Maxwell gas")
+      ->option_text("kick|thermal (kick)");
+  sub.add_option_function<std::string>(
+         "--kick-site",
+         [&c](const std::string& v) {
+           if (v != "random" && v != "centre")
+             throw CLI::ValidationError("--kick-site", "'" + v + "' is not random or centre");
+           c.kick_site = v == "random" ? KickSite::Random : KickSite::Centre;
+         },
+         "Which particle is kicked: random or the one nearest the centre")
+      ->option_text("random|centre (random)");
   sub.add_option("--temperature", c.temperature, "Temperature of the thermal initial state")
       ->capture_default_str();
   sub.add_option("--lattice", c.lattice, "1D only: lattice spacing a instead of random positions")
