@@ -1,15 +1,18 @@
 // Renderer speed at 1920x1080 on synthetic scenes of the paper's sizes, readback included (the
 // PNG or movie encoder is not). A frame is everything render() does: choose colours, cull,
 // upload, draw, read back, draw the overlays.
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <random>
 
 #include "bench/bench.h"
+#include "render/png.h"
 #include "render/renderer.h"
 
 namespace gs::bench {
@@ -127,6 +130,33 @@ void add_render_cases(std::vector<Case>& cases) {
                      v.slab = 6;
                      return measure(s, st, v, "<= 1 s");
                    }});
+  cases.push_back(
+      {"render/png_1080p", "PNG writing of a 1920x1080 frame, levels 1 and 6", false, [] {
+         const auto s = synthetic(2, 250000, 1000, 300, 330);
+         render::Style st;
+         st.show_inactive = true;
+         render::Renderer r;
+         const render::Image img = r.render(s, st, full_hd());
+         const auto path = std::filesystem::temp_directory_path() /
+                           ("grainshock_bench_" + std::to_string(::getpid()) + ".png");
+         std::vector<Figure> out;
+         for (int level : {1, 6}) {
+           double best = 1e300;
+           for (int k = 0; k < 3; ++k) {
+             const auto t0 = std::chrono::steady_clock::now();
+             render::write_png(path.string(), img, {}, level);
+             best = std::min(best, std::chrono::duration<double, std::milli>(
+                                       std::chrono::steady_clock::now() - t0)
+                                       .count());
+           }
+           out.push_back({"write_ms_level" + std::to_string(level), best, "ms",
+                          level == 1 ? "well under level 6" : ""});
+           out.push_back({"bytes_level" + std::to_string(level),
+                          static_cast<double>(std::filesystem::file_size(path)), "B", ""});
+         }
+         std::filesystem::remove(path);
+         return out;
+       }});
   cases.push_back({"render/spheres_2e6_whole",
                    "3D, 2e6 spheres, all shown (occlusion culling), 1920x1080", true, [] {
                      const auto s = synthetic(3, 2000000, 200, 60, 64);

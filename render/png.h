@@ -12,8 +12,8 @@ namespace gs::render {
 
 using PngText = std::vector<std::pair<std::string, std::string>>;
 
-// Level 1 writes a 1080p frame in about a third of the default level's time at nearly the same
-// size. UserError naming the path on failure.
+// Level 1 (the default) writes a 1080p frame in ~50 ms where level 6 takes ~330 ms, and the file
+// is smaller (bench case render/png_1080p). UserError naming the path on failure.
 void write_png(const std::string& path, const Image& img, const PngText& text = {},
                int compression_level = 1);
 
