@@ -117,11 +117,11 @@ void add_render_command(CLI::App& app) {
     for (const auto& path : o.inputs) {
       snaps.push_back(read_xyz(path));
       const bool needs_velocity = o.inputs.size() == 1 && st.field != render::Field::FirstCollision;
-      if (needs_velocity && !snaps.back().has_velocity())
+      if (needs_velocity && snaps.back().size() > 0 && !snaps.back().has_velocity())
         throw UserError("snapshot '" + path +
                         "' has no velocities (no velo property); cannot colour by " + o.colour_by);
       if (o.inputs.size() == 1 && st.field == render::Field::FirstCollision &&
-          snaps.back().first_collision.empty())
+          snaps.back().size() > 0 && snaps.back().first_collision.empty())
         throw UserError("snapshot '" + path + "' has no first_collision property");
     }
     std::vector<const Snapshot*> ptrs;

@@ -11,13 +11,13 @@ std::vector<double> field_values(const Snapshot& s, Field f) {
   const std::size_t n = s.size();
   std::vector<double> v(n);
   if (f == Field::FirstCollision) {
-    if (s.first_collision.size() != n)
+    if (n > 0 && s.first_collision.size() != n)
       throw UserError("snapshot has no first_collision column; cannot colour by first collision");
     for (std::size_t i = 0; i < n; ++i)
       v[i] = s.first_collision[i] < 0 ? std::nan("") : s.first_collision[i];
     return v;
   }
-  if (!s.has_velocity())
+  if (n > 0 && !s.has_velocity())
     throw UserError(std::string("snapshot has no velocities (velo); cannot colour by ") +
                     (f == Field::Speed ? "speed" : "radial velocity"));
   if (f == Field::Speed) {
