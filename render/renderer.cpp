@@ -417,6 +417,7 @@ Renderer::~Renderer() {
   gl.DeleteBuffers(1, &impl_->vbo);
   gl.DeleteBuffers(1, &impl_->ibo);
   gl.DeleteVertexArrays(1, &impl_->vao);
+  gl.DeleteProgram(impl_->point_prog);
   gl.DeleteProgram(impl_->disc_prog);
   gl.DeleteProgram(impl_->sphere_prog);
 }
