@@ -70,7 +70,10 @@ void add_render_command(CLI::App& app) {
   sub->add_flag("--no-colorbar", opt->no_colorbar, "Leave out the colour bar");
   sub->add_flag("--no-time", opt->no_time, "Leave out the time label");
   sub->add_flag("--no-legend", opt->no_legend, "Leave out the legend of the multi-time overlay");
-  sub->add_flag("--scale-bar", opt->style.scale_bar, "2D: a scale bar in particle diameters");
+  sub->add_flag("--clip", opt->view.clip,
+                "3D: cut away the half nearer than the plane through the centre facing the camera");
+  sub->add_flag("--scale-bar", opt->style.scale_bar,
+                "A scale bar in particle diameters (3D: at the centre's distance)");
   sub->add_option("--msaa", opt->style.msaa, "3D: samples per pixel (0 for none)")
       ->capture_default_str();
   sub->add_option("--font", opt->style.font, "TrueType font for the annotations")

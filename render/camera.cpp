@@ -10,6 +10,7 @@ bool Camera::visible(const Eigen::Vector3d& p, double r) const {
   const Eigen::Vector3d d = p - origin;
   if (!perspective) return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
   if (slab > 0 && std::abs(d.dot(forward)) > slab / 2) return false;
+  if (clip && d.dot(forward) < 0) return false;
   const Eigen::Vector4d e = view * Eigen::Vector4d(d.x(), d.y(), d.z(), 1);
   const double depth = -e.z();
   if (depth - r > far || depth + r < near || e.head<3>().norm() <= r) return false;
@@ -40,6 +41,7 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   c.perspective = true;
   c.width = v.width, c.height = v.height;
   c.slab = v.slab;
+  c.clip = v.clip;
   const double aspect = double(v.width) / v.height;
   const double deg = std::numbers::pi / 180;
   c.tan_half_y = std::tan(v.fov * deg / 2);
@@ -63,7 +65,7 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   c.view.block<1, 3>(1, 0) = cam_up.transpose();
   c.view.block<1, 3>(2, 0) = -c.forward.transpose();
   c.view.block<3, 1>(0, 3) = -(c.view.block<3, 3>(0, 0) * eye);
-  const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + 1) : radius;
+  const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + 1) : v.clip ? 1.0 : radius;
   c.near = std::max(dist - reach - 1, dist * 1e-3);
   c.far = dist + radius + 1;
   c.proj.setZero();

@@ -22,6 +22,7 @@ struct Camera {
   double distance = 0;  // 3D: from the eye to the origin
   double tan_half_x = 1, tan_half_y = 1;
   double slab = 0;
+  bool clip = false;
 
   double pixels_per_unit() const { return width / (2 * half_w); }
   // False if a disc or sphere of radius r at world point p cannot show in the picture.

@@ -663,7 +663,7 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   // Overlays, on the CPU: text and the colour bar come out identical on every driver.
   OverlayPainter* painter = nullptr;
   const bool any_overlay = (style.colorbar && !overlay) || style.time_label ||
-                           (style.legend && overlay) || (style.scale_bar && !three_d);
+                           (style.legend && overlay) || style.scale_bar;
   if (!any_overlay) return img;
   painter = &m.overlay_painter(style.font);
   const OverlayColours oc{pal.text, pal.background};
@@ -675,7 +675,8 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     }
     if (style.time_label) painter->top_left_label(img, time_text(snaps.front()->info), oc);
   }
-  if (style.scale_bar && !three_d) painter->scale_bar(img, cam.pixels_per_unit(), oc);
+  // In 3D, cam.half_w is the visible half width at the orbit centre's distance.
+  if (style.scale_bar) painter->scale_bar(img, cam.pixels_per_unit(), oc);
   return img;
 }
 

@@ -24,7 +24,7 @@ struct Style {
   Background background = Background::Light;
   bool colorbar = true;
   bool time_label = true;
-  bool scale_bar = false;     // 2D only: a length in particle diameters
+  bool scale_bar = false;     // a length in particle diameters (3D: at the centre's distance)
   bool legend = true;         // multi-snapshot overlay: one colour per time
   int msaa = 4;               // samples per pixel for 3D spheres (2D discs antialias in the shader)
   double splat_below_px = 2;  // 2D discs of smaller radius (pixels) are drawn on the CPU

@@ -21,6 +21,8 @@ struct View {
   // 3D: keep only particles whose centres lie within slab/2 of the plane through the centre
   // facing the camera (0: no cut), exposing the shell's cross-section.
   double slab = 0;
+  // 3D: drop particles whose centres lie nearer than that plane (a half-space cut).
+  bool clip = false;
 };
 
 }  // namespace gs::render
