@@ -465,10 +465,10 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   if (style.scale == Scale::Log) bar_label += " (log)";
 
   auto time_text = [](const SnapshotInfo& in) {
-    std::string t = "t = " + fmt("%.5g", in.time);
+    std::string t = "t = " + fmt("%.6g", in.time);
     if (in.density)
       t += "   t_paper = " +
-           fmt("%.5g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
+           fmt("%.6g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
     return t;
   };
   std::vector<std::pair<Rgb8, std::string>> legend;
