@@ -3,20 +3,14 @@
 #include <cmath>
 
 #include "sim/engine.h"
+#include "tests/sim/thermal_config.h"
 #include "sim/error.h"
 #include "sim/initial.h"
 
 namespace gs {
 namespace {
 
-PhysicsConfig thermal(int dim, std::int64_t n, double r) {
-  PhysicsConfig c;
-  c.dim = dim;
-  c.particles = n;
-  c.restitution = r;
-  c.initial = Initial::Thermal;
-  return c;
-}
+using test::thermal;
 
 double momentum_scale(const Snapshot& s) {
   double sum = 0;

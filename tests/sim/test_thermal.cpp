@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "sim/engine.h"
+#include "tests/sim/thermal_config.h"
 #include "sim/initial.h"
 #include "sim/recorder.h"
 
@@ -35,14 +36,7 @@ double enskog_rate(int dim, double n, double temperature) {
   return (dim == 2 ? 2 : 4) * n * contact_g(dim, packing(dim, n)) * std::sqrt(kPi * temperature);
 }
 
-PhysicsConfig thermal(int dim, std::int64_t n, double r) {
-  PhysicsConfig c;
-  c.dim = dim;
-  c.particles = n;
-  c.restitution = r;
-  c.initial = Initial::Thermal;
-  return c;
-}
+using test::thermal;
 
 // Elastic gas at n = 0.25: equilibrate for ~30 collisions per particle (the RSA start has no
 // equilibrium structure), then average the virial pressure and collision rate over ~300 more.
