@@ -247,7 +247,7 @@ std::string fig_collapse(const CaseResult& c, const fs::path& dir, const std::st
   gp += "set title '(a) t^{alpha} P(R,t) against R t^{-alpha}'\nset xlabel 'R t^{-" + as +
         "}'\nset ylabel 't^{" + as + "} P(R,t)'\nset key top left\n" + pr + "\n";
   gp += "set title '(b) t^{alpha-1} P(v,t) against v t^{1-alpha}'\nset xlabel 'v t^{1-alpha}'\n"
-        "set ylabel 't^{alpha-1} P(v,t)'\nset logscale y\nset key top right\n" + pv + "\n";
+        "set ylabel 't^{alpha-1} P(v,t)'\nset logscale y\nset format y '10^{%L}'\nset key top right\n" + pv + "\n";
   gp += "unset multiplot\n";
   (void)a;
   return run_gnuplot(dir, base + ".gp", gp);
