@@ -37,12 +37,13 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
-// Runs `grainshock ARGS` with stdout discarded and stderr captured.
-inline CommandResult grainshock(const std::string& args) {
+// Runs `grainshock ARGS` with stdout discarded and stderr captured; `env` is an optional
+// prefix of VAR=value assignments.
+inline CommandResult grainshock(const std::string& args, const std::string& env = "") {
   const auto err_file = std::filesystem::temp_directory_path() /
                         ("grainshock_test_err_" + std::to_string(::getpid()));
   const std::string cmd =
-      std::string(GRAINSHOCK_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+      env + " " + GRAINSHOCK_BINARY + " " + args + " >/dev/null 2>" + err_file.string();
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

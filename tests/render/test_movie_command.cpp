@@ -8,15 +8,13 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "render/png.h"
+#include "tests/apps/cli_test_util.h"
 #include "tests/render/movie_decode.h"
 
 extern char** environ;
@@ -33,24 +31,9 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-struct Result {
-  int exit_code = -1;
-  std::string err;
-};
+using Result = test::CommandResult;
 
-// Runs `grainshock movie ARGS`; stderr is kept, stdout dropped.
-Result movie(const std::string& args, const fs::path& err_file) {
-  const std::string cmd = std::string(GRAINSHOCK_BINARY) + " movie " + args + " > /dev/null 2> " +
-                          err_file.string();
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err_file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+Result movie(const std::string& args) { return test::grainshock("movie " + args); }
 
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> out;
@@ -73,8 +56,7 @@ TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
   const auto dir = fresh_dir("basic");
   const Result r = movie(std::string(kSmallRun) +
                              " --t-max 200 --frames 24 --fps 12 --width 320 --height 240 --keep-frames --out " +
-                             dir.string(),
-                         dir.string() + ".err");
+                             dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "run.toml"}));
   EXPECT_EQ(names_in(dir / "frames").size(), 24u);
@@ -100,8 +82,7 @@ TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
   const auto lin = fresh_dir("lin");
   ASSERT_EQ(movie(std::string(kSmallRun) +
                       " --t-max 100 --frames 4 --frame-spacing lin --width 64 --height 48"
-                      " --keep-frames --out " + lin.string(),
-                  lin.string() + ".err")
+                      " --keep-frames --out " + lin.string())
                 .exit_code,
             0);
   const double want_lin[] = {25, 50, 75, 100};
@@ -111,8 +92,7 @@ TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
   const auto log = fresh_dir("log");
   ASSERT_EQ(movie(std::string(kSmallRun) +
                       " --t-max 100 --frames 3 --frame-spacing log --t-start 1 --width 64"
-                      " --height 48 --keep-frames --out " + log.string(),
-                  log.string() + ".err")
+                      " --height 48 --keep-frames --out " + log.string())
                 .exit_code,
             0);
   const double want_log[] = {1, 10, 100};
@@ -125,8 +105,7 @@ TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
 TEST(MovieCommand, OddSizeMpeg4And3dSlab) {
   const auto odd = fresh_dir("odd_mpeg4");
   const Result r = movie(std::string(kSmallRun) + " --t-max 200 --frames 6 --width 161 --height 91 --codec mpeg4"
-                                                  " --fps 25 --out " + odd.string(),
-                         odd.string() + ".err");
+                                                  " --fps 25 --out " + odd.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Decoded d = decode_movie(odd / "movie.mp4");
   EXPECT_EQ(d.codec, AV_CODEC_ID_MPEG4);
@@ -136,8 +115,7 @@ TEST(MovieCommand, OddSizeMpeg4And3dSlab) {
 
   const auto three = fresh_dir("3d");
   const Result r3 = movie("--dim 3 --particles 3000 --t-max 60 --quiet --frames 5 --slab 6"
-                          " --width 160 --height 120 --out " + three.string(),
-                          three.string() + ".err");
+                          " --width 160 --height 120 --out " + three.string());
   ASSERT_EQ(r3.exit_code, 0) << r3.err;
   EXPECT_EQ(decode_movie(three / "movie.mp4").frames, 5);
 }
@@ -161,17 +139,15 @@ TEST(MovieCommand, BadInputIsOneLineNonZeroAndNoMovie) {
     const auto dir = fresh_dir("bad" + std::to_string(i++));
     const std::string frames = args.find("--frames") == std::string::npos ? " --frames 5" : "";
     const Result r = movie(std::string(kSmallRun) + " --t-max 100" + frames + " " + args +
-                               " --out " + dir.string(),
-                           dir.string() + ".err");
+                               " --out " + dir.string());
     EXPECT_NE(r.exit_code, 0) << args;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find("error"), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir)) << args << ": input is checked before the folder is made";
   }
-  const Result r = movie(std::string(kSmallRun) + " --out /proc/grainshock-movie",
-                         fs::path(GRAINSHOCK_TEST_OUTPUT_DIR) / "movie_command" / "proc.err");
+  const Result r = movie(std::string(kSmallRun) + " --out /proc/grainshock-movie");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_FALSE(fs::exists("/proc/grainshock-movie/movie.mp4"));
 }
 

@@ -1,15 +1,13 @@
 // `grainshock render` as a user meets it: the built binary, real files, exit codes, stderr.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 #include "render/png.h"
+#include "tests/apps/cli_test_util.h"
 #include "tests/render/golden.h"
 
 namespace gs {
@@ -17,30 +15,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string err;
-};
+using Result = test::CommandResult;
 
+// One folder per test: ctest runs tests in parallel, and they must not share files.
 fs::path dir() {
-  const fs::path d = fs::path(GRAINSHOCK_TEST_OUTPUT_DIR) / "render_cli";
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path d = fs::path(GRAINSHOCK_TEST_OUTPUT_DIR) / "render_cli" / info->name();
   fs::create_directories(d);
   return d;
 }
 
-// Runs the binary with `args` (and an optional environment prefix), capturing stderr.
 Result run(const std::string& args, const std::string& env = "") {
-  const fs::path err = dir() / "stderr.txt";
-  const std::string cmd =
-      env + " " + GRAINSHOCK_BINARY + " render " + args + " 2>" + err.string() + " >/dev/null";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
+  return test::grainshock("render " + args, env);
 }
 
 std::string write(const std::string& name, const std::string& text) {
@@ -73,7 +59,7 @@ void expect_one_line_error(const std::string& args, const std::string& needle,
   fs::remove(png);
   const Result r = run(args + " --out " + png.string(), env);
   EXPECT_NE(r.exit_code, 0) << args;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
   EXPECT_EQ(r.err.rfind("grainshock: error: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find(needle), std::string::npos) << "expected '" << needle << "' in: " << r.err;
   EXPECT_TRUE(no_png_left(png)) << args;
