@@ -1,27 +1,15 @@
 #include "analysis/ensemble_output.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "analysis/json.h"
+#include "sim/atomic_file.h"
 #include "sim/error.h"
 #include "sim/format.h"
 
 namespace gs {
 namespace {
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  auto tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw UserError(path.string() + ": cannot write");
-    f << text;
-    if (!f.flush()) throw UserError(path.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
-}
 
 Table distributions(const EnsembleSums& sums) {
   const double a = theory_alpha(sums.spec().physics);
@@ -157,11 +145,11 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
 void write_ensemble_outputs(const std::filesystem::path& dir, const EnsembleSums& sums,
                             const EnsembleFits& fits) {
   GS_CHECK(sums.count() >= 1);
-  write_text(dir / "ensemble.toml", spec_toml(held_spec(sums)));
+  write_file_atomic(dir / "ensemble.toml", spec_toml(held_spec(sums)));
   write_csv(sums.timeseries(), dir / "timeseries_mean.csv");
   write_csv(distributions(sums), dir / "distributions_mean.csv");
   write_csv(snapshot_scalars(sums), dir / "snapshot_scalars_mean.csv");
-  write_text(dir / "summary.json", summary_json(sums, fits));
+  write_file_atomic(dir / "summary.json", summary_json(sums, fits));
 }
 
 }  // namespace gs

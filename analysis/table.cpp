@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "sim/atomic_file.h"
 #include "sim/error.h"
 #include "sim/format.h"
 
@@ -125,11 +126,7 @@ Table parse_csv(std::string_view text, const std::string& source) {
 }
 
 void write_csv(const Table& table, const std::filesystem::path& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw UserError("cannot write " + path.string());
-  out << to_csv(table);
-  out.close();
-  if (!out) throw UserError("cannot write " + path.string());
+  write_file_atomic(path, to_csv(table));
 }
 
 Table read_csv(const std::filesystem::path& path) {

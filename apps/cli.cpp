@@ -1,6 +1,5 @@
 #include "apps/cli.h"
 
-#include <fstream>
 #include <toml++/toml.h>
 
 #include "sim/error.h"
@@ -111,19 +110,6 @@ std::filesystem::path prepare_output_dir(const std::string& dir, bool force) {
     if (ec) throw UserError("--out " + dir + ": cannot create folder: " + ec.message());
   }
   return p;
-}
-
-void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
-  auto tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw UserError(path.string() + ": cannot write");
-    f << text;
-    f.flush();
-    if (!f) throw UserError(path.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace gs::app

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "sim/atomic_file.h"
 #include "sim/config.h"
 
 namespace gs::app {
@@ -18,9 +19,5 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c);
 // Creates `dir` for a new run. An existing non-empty folder is refused unless `force`;
 // nothing in it is deleted either way (files are replaced one by one as they are written).
 std::filesystem::path prepare_output_dir(const std::string& dir, bool force);
-
-// Writes `text` to `path` through a temporary file and rename, so a reader never sees half a
-// file and an interrupted write leaves the previous version intact.
-void write_file_atomic(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace gs::app

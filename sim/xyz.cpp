@@ -1,17 +1,14 @@
 #include "sim/xyz.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
-#include <system_error>
 
+#include "sim/atomic_file.h"
 #include "sim/error.h"
 
 namespace gs {
@@ -318,23 +315,7 @@ void write_xyz(const std::string& path, const Snapshot& s) {
     out += '\n';
   }
 
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (f) f.write(out.data(), static_cast<std::streamsize>(out.size()));
-    if (f) f.close();
-    if (!f) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw UserError("cannot write snapshot '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw UserError("cannot write snapshot '" + path + "': " + ec.message());
-  }
+  write_file_atomic(path, out);
 }
 
 }  // namespace gs

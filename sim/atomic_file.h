@@ -1,0 +1,12 @@
+#pragma once
+#include <filesystem>
+#include <string_view>
+
+namespace gs {
+
+// Writes `text` to `path` through a temporary file beside it and a rename, so a reader never
+// sees half a file and a failed or interrupted write leaves the earlier version intact.
+// Failures are UserErrors naming the path.
+void write_file_atomic(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace gs
