@@ -3,11 +3,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "analysis/json.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "bench/bench.h"
 #include "sim/error.h"
-#include "sim/format.h"
 
 namespace gs::app {
 
@@ -53,7 +53,7 @@ void add_bench_command(CLI::App& app) {
         std::printf("  %-34s %14.6g %-4s %s\n", f.name.c_str(), f.value, f.unit.c_str(),
                     f.target.empty() ? "" : ("target " + f.target).c_str());
         json << (first ? "" : ",\n") << "  {\"case\": \"" << c.name << "\", \"figure\": \""
-             << f.name << "\", \"value\": " << format_double(f.value) << ", \"unit\": \""
+             << f.name << "\", \"value\": " << json_number(f.value) << ", \"unit\": \""
              << f.unit << "\"}";
         first = false;
       }
