@@ -96,6 +96,14 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
       ->capture_default_str();
 }
 
+CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bool& quiet) {
+  auto* o = sub.add_option("--out", out, "Output folder (must not exist or be empty)");
+  if (!out.empty()) o->capture_default_str();
+  sub.add_flag("--force", force, "Write into an existing non-empty output folder");
+  sub.add_flag("--quiet", quiet, "Nothing on stderr but errors");
+  return o;
+}
+
 std::filesystem::path prepare_output_dir(const std::string& dir, bool force) {
   namespace fs = std::filesystem;
   const fs::path p(dir);

@@ -83,10 +83,7 @@ void add_ensemble_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--threads", opt->threads, "Worker threads K (results do not depend on it)")
       ->capture_default_str();
-  sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")
-      ->capture_default_str();
-  sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->quiet, "No progress on stderr");
+  add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--per-decade", opt->per_decade, "Samples per decade of the logarithmic grid")
       ->capture_default_str();
   sub->add_option("--snapshot-times", opt->snapshot_times,

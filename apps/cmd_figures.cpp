@@ -673,9 +673,7 @@ void add_figures_command(CLI::App& app) {
   sub->add_flag("--estimate", opt->estimate,
                 "Only estimate the wall time of the chosen mode from --sample realisations per case");
   sub->add_option("--sample", opt->sample, "Realisations per case for --estimate")->capture_default_str();
-  sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")->capture_default_str();
-  sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->quiet, "No progress on stderr");
+  add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--threads", opt->threads, "Worker threads")->capture_default_str();
   sub->add_option("--seed", opt->seed, "Master seed of every ensemble")->capture_default_str();
   sub->callback([opt] { run(*opt); });

@@ -83,9 +83,7 @@ void add_merge_command(CLI::App& app) {
       "merge", "Combine ensemble folders made with --per-realisation into one ensemble");
   sub->add_option("folders", opt->inputs, "Ensemble folders (same physics and sampling)")
       ->required();
-  sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")->required();
-  sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->quiet, "No summary line on stderr");
+  add_output_options(*sub, opt->out, opt->force, opt->quiet)->required();
   sub->add_option("--resamples", opt->resamples, "Bootstrap resamples of the exponent intervals")
       ->capture_default_str();
   add_window_option(*sub, opt->window);

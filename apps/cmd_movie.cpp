@@ -23,10 +23,7 @@ void add_movie_command(CLI::App& app) {
   auto* sub = app.add_subcommand("movie", "Simulate one realisation and stream it into DIR/movie.mp4");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
-  sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")
-      ->capture_default_str();
-  sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->movie.quiet, "No progress on stderr");
+  add_output_options(*sub, opt->out, opt->force, opt->movie.quiet);
   sub->add_option("--frames", opt->movie.frames, "Number of frames")->capture_default_str();
   sub->add_option("--frame-spacing", opt->movie.spacing,
                   "Frame times: lin (t-max/N apart) or log (from --t-start to --t-max)")

@@ -260,10 +260,7 @@ void add_run_command(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "Simulate one realisation and write a run folder");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
-  sub->add_option("--out", opt->out, "Output folder (must not exist or be empty)")
-      ->capture_default_str();
-  sub->add_flag("--force", opt->force, "Write into an existing non-empty output folder");
-  sub->add_flag("--quiet", opt->quiet, "No progress on stderr");
+  add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--per-decade", opt->per_decade, "Samples per decade of the logarithmic grid")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
