@@ -31,7 +31,8 @@ double interpolate(const Curve& c, double x) {
 double collapse_quality(std::span<const Curve> curves, int grid_points) {
   if (curves.size() < 2) throw UserError("collapse quality needs at least two curves");
   if (grid_points < 2) throw UserError("collapse quality needs at least two grid points");
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  double lo = -std::numeric_limits<double>::infinity(),
+         hi = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < curves.size(); ++k) {
     const Curve& c = curves[k];
     GS_CHECK(c.x.size() == c.y.size());

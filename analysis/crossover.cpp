@@ -53,7 +53,8 @@ Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
   std::size_t k = n - 1;  // first sample of the final in-band run
   while (k > 0 && m.deviation[k - 1] <= 0) --k;
   if (k == 0) {
-    c.note = "the local slope is within tolerance from the first sample (crossover before the data)";
+    c.note =
+        "the local slope is within tolerance from the first sample (crossover before the data)";
     return c;
   }
   c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
@@ -71,7 +72,8 @@ Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
     return c;
   }
   if (m.deviation[n - 1] <= 0) {
-    c.note = "the local slope is still within tolerance at the end of the range (crossover not reached)";
+    c.note =
+        "the local slope is still within tolerance at the end of the range (crossover not reached)";
     return c;
   }
   std::size_t k = n - 1;  // first sample of the final out-of-band run

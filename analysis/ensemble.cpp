@@ -77,11 +77,13 @@ void EnsembleAverage::check_compatible(const Table& table, const std::string& so
 void EnsembleAverage::insert_index(std::uint64_t realisation, const std::string& source) {
   const auto it = std::lower_bound(indices_.begin(), indices_.end(), realisation);
   if (it != indices_.end() && *it == realisation)
-    throw UserError(source + ": realisation " + std::to_string(realisation) + " is already in the ensemble");
+    throw UserError(source + ": realisation " + std::to_string(realisation) +
+                    " is already in the ensemble");
   indices_.insert(it, realisation);
 }
 
-void EnsembleAverage::add(std::uint64_t realisation, const Table& table, const std::string& source) {
+void EnsembleAverage::add(std::uint64_t realisation, const Table& table,
+                          const std::string& source) {
   if (indices_.empty()) {
     Table grid;
     std::vector<std::size_t> averaged;
@@ -189,8 +191,9 @@ void ProfileAverage::add(const RadialProfile& p, const std::string& source) {
     radial_.assign(p.count.size(), ExactSum());
     count_.assign(p.count.size(), 0);
   } else if (p.edges != edges_) {
-    throw UserError(source + ": profile shells differ from the first realisation's (give a fixed "
-                             "binning for ensembles)");
+    throw UserError(source +
+                    ": profile shells differ from the first realisation's (give a fixed "
+                    "binning for ensembles)");
   }
   density_.add(p.density);
   for (std::size_t b = 0; b < count_.size(); ++b) {
@@ -225,7 +228,8 @@ RadialProfile ProfileAverage::mean() const {
     p.speed_sum.push_back(speed_[b].value());
     p.radial_velocity_sum.push_back(radial_[b].value());
     p.mean_speed.push_back(count_[b] ? p.speed_sum[b] / double(count_[b]) : nan);
-    p.mean_radial_velocity.push_back(count_[b] ? p.radial_velocity_sum[b] / double(count_[b]) : nan);
+    p.mean_radial_velocity.push_back(count_[b] ? p.radial_velocity_sum[b] / double(count_[b])
+                                               : nan);
   }
   return p;
 }

@@ -49,7 +49,8 @@ class EnsembleAverage {
   void merge(const EnsembleAverage& other);
   std::uint64_t realisations() const { return indices_.size(); }
   const std::vector<std::uint64_t>& indices() const { return indices_; }  // sorted
-  // Grid columns, then c and c_sem for each averaged column, in input order. Needs >= 1 realisation.
+  // Grid columns, then c and c_sem for each averaged column, in input order. Needs >= 1
+  // realisation.
   Table result() const;
 
  private:
@@ -57,10 +58,10 @@ class EnsembleAverage {
   void insert_index(std::uint64_t realisation, const std::string& source);
 
   std::vector<std::string> grid_request_;
-  Table grid_;                      // grid columns of the first realisation
-  std::vector<std::string> names_;  // all columns of the first realisation, in order
+  Table grid_;                         // grid columns of the first realisation
+  std::vector<std::string> names_;     // all columns of the first realisation, in order
   std::vector<std::size_t> averaged_;  // indices into names_ of the averaged columns
-  MeanAccumulator acc_;             // row-major: row * averaged_.size() + k
+  MeanAccumulator acc_;                // row-major: row * averaged_.size() + k
   std::vector<std::uint64_t> indices_;
 };
 

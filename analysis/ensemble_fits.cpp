@@ -9,7 +9,7 @@
 namespace gs {
 namespace {
 
-constexpr double kStartActive = 20;  // automatic windows start once <N_t> reaches this
+constexpr double kStartActive = 20;   // automatic windows start once <N_t> reaches this
 constexpr double kLateDecades = 1.5;  // automatic windows lie within the last 1.5 decades
 
 }  // namespace
@@ -63,8 +63,9 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
           w = auto_window(t, y, ao);
         } catch (const UserError&) {
           w = {std::max(t_start, t.back() / 10), t.back()};
-          e.note = "the local slope drifts by more than +-0.05 over the last 1.5 decades; fit over "
-                   "the last decade";
+          e.note =
+              "the local slope drifts by more than +-0.05 over the last 1.5 decades; fit over "
+              "the last decade";
         }
       }
       if (sums.count() >= 2) {
@@ -83,13 +84,27 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
       e.note = err.what();
     }
     const double x = e.fit.exponent;
-    const double half = e.fit.confidence > 0 ? 0.5 * (e.fit.ci_hi - e.fit.ci_lo) : e.fit.standard_error;
-    // alpha from each relation: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2), R ~ t^alpha, v ~ t^(alpha - 1).
+    const double half =
+        e.fit.confidence > 0 ? 0.5 * (e.fit.ci_hi - e.fit.ci_lo) : e.fit.standard_error;
+    // alpha from each relation: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2), R ~ t^alpha, v ~
+    // t^(alpha - 1).
     switch (q) {
-      case 0: e.alpha = x / d; e.alpha_uncertainty = half / d; break;
-      case 1: e.alpha = (x + 2) / (d + 2); e.alpha_uncertainty = half / (d + 2); break;
-      case 2: e.alpha = x; e.alpha_uncertainty = half; break;
-      default: e.alpha = x + 1; e.alpha_uncertainty = half; break;
+      case 0:
+        e.alpha = x / d;
+        e.alpha_uncertainty = half / d;
+        break;
+      case 1:
+        e.alpha = (x + 2) / (d + 2);
+        e.alpha_uncertainty = half / (d + 2);
+        break;
+      case 2:
+        e.alpha = x;
+        e.alpha_uncertainty = half;
+        break;
+      default:
+        e.alpha = x + 1;
+        e.alpha_uncertainty = half;
+        break;
     }
     f.exponents.push_back(e);
   }

@@ -50,7 +50,7 @@ struct EnsembleFits {
   double collapse_radius = std::numeric_limits<double>::quiet_NaN();
   double collapse_speed = std::numeric_limits<double>::quiet_NaN();
   std::string collapse_note;
-  double anisotropy = 0, anisotropy_sem = 0;  // at the last sample
+  double anisotropy = 0, anisotropy_sem = 0;            // at the last sample
   double packing_typical = 0, packing_typical_sem = 0;  // at the last snapshot time
   double packing_upper = 0, packing_upper_sem = 0;
   double inner_outer_ratio = 0, inner_outer_ratio_sem = 0;

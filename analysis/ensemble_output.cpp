@@ -14,11 +14,26 @@ namespace {
 Table distributions(const EnsembleSums& sums) {
   const double a = theory_alpha(sums.spec().physics);
   Table out;
-  const std::vector<std::string> names = {
-      "t",        "bin",       "R",          "P_R",         "P_R_sem",        "x_R",
-      "f1",       "v",         "P_v",        "P_v_sem",     "x_v",            "f2",
-      "profile_density", "profile_density_sem", "profile_count", "profile_mean_speed",
-      "profile_mean_radial_velocity", "packing", "P_packing", "P_packing_sem"};
+  const std::vector<std::string> names = {"t",
+                                          "bin",
+                                          "R",
+                                          "P_R",
+                                          "P_R_sem",
+                                          "x_R",
+                                          "f1",
+                                          "v",
+                                          "P_v",
+                                          "P_v_sem",
+                                          "x_v",
+                                          "f2",
+                                          "profile_density",
+                                          "profile_density_sem",
+                                          "profile_count",
+                                          "profile_mean_speed",
+                                          "profile_mean_radial_velocity",
+                                          "packing",
+                                          "P_packing",
+                                          "P_packing_sem"};
   for (const auto& n : names) out.add_column(n, {});
   for (const auto& s : sums.snapshots()) {
     const Histogram pr = s.radius.mean(), pv = s.speed.mean(), pp = s.packing.mean();
@@ -29,13 +44,26 @@ Table distributions(const EnsembleSums& sums) {
     const RadialProfile prof = s.profile.mean();
     const auto prof_se = s.profile.density_standard_error();
     for (std::size_t b = 0; b < pr.bins(); ++b) {
-      const std::vector<double> row = {
-          s.t,           double(b),          pr.centre(b),          pr.values[b],
-          pr_se[b],      fr.centre(b),       fr.values[b],          pv.centre(b),
-          pv.values[b],  pv_se[b],           fv.centre(b),          fv.values[b],
-          prof.density[b], prof_se[b],       double(prof.count[b]), prof.mean_speed[b],
-          prof.mean_radial_velocity[b],      pp.centre(b),          pp.values[b],
-          pp_se[b]};
+      const std::vector<double> row = {s.t,
+                                       double(b),
+                                       pr.centre(b),
+                                       pr.values[b],
+                                       pr_se[b],
+                                       fr.centre(b),
+                                       fr.values[b],
+                                       pv.centre(b),
+                                       pv.values[b],
+                                       pv_se[b],
+                                       fv.centre(b),
+                                       fv.values[b],
+                                       prof.density[b],
+                                       prof_se[b],
+                                       double(prof.count[b]),
+                                       prof.mean_speed[b],
+                                       prof.mean_radial_velocity[b],
+                                       pp.centre(b),
+                                       pp.values[b],
+                                       pp_se[b]};
       out.add_row(row);
     }
   }
@@ -99,13 +127,14 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  \"exponents\": [\n";
   for (std::size_t k = 0; k < f.exponents.size(); ++k) {
     const auto& e = f.exponents[k];
-    j << "    {\"quantity\": " << json_string(e.quantity) << ", \"column\": " << json_string(e.column)
+    j << "    {\"quantity\": " << json_string(e.quantity)
+      << ", \"column\": " << json_string(e.column)
       << ", \"exponent\": " << json_number(e.fit.exponent)
       << ", \"ci_lo\": " << json_number(e.fit.ci_lo) << ", \"ci_hi\": " << json_number(e.fit.ci_hi)
       << ", \"confidence\": " << json_number(e.fit.confidence)
       << ", \"standard_error\": " << json_number(e.fit.standard_error)
-      << ", \"theory\": " << json_number(e.theory)
-      << ", \"window\": [" << json_number(e.fit.window.t_lo) << ", " << json_number(e.fit.window.t_hi)
+      << ", \"theory\": " << json_number(e.theory) << ", \"window\": ["
+      << json_number(e.fit.window.t_lo) << ", " << json_number(e.fit.window.t_hi)
       << "], \"points\": " << e.fit.points << ", \"alpha\": " << json_number(e.alpha)
       << ", \"alpha_uncertainty\": " << json_number(e.alpha_uncertainty)
       << ", \"note\": " << json_string(e.note) << "}" << (k + 1 < f.exponents.size() ? "," : "")
@@ -113,16 +142,18 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   }
   j << "  ],\n";
   j << "  \"exponent_definition\": "
-    << json_string("least-squares slope of ln <y> vs ln t over the window (automatic: longest range "
-                   "within the last 1.5 decades, after <N_t> >= 20, where the local slope stays "
-                   "within +-0.05, else the last decade); interval: 95% percentile bootstrap over "
-                   "realisations")
+    << json_string(
+           "least-squares slope of ln <y> vs ln t over the window (automatic: longest range "
+           "within the last 1.5 decades, after <N_t> >= 20, where the local slope stays "
+           "within +-0.05, else the last decade); interval: 95% percentile bootstrap over "
+           "realisations")
     << ",\n";
   j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
   j << "  \"crossover_definition\": "
-    << json_string("slope rule on <N_t>: t_c1 = time from which the local slope stays within 10% of "
-                   "alpha d; t_c2 = later time from which it stays outside that band")
+    << json_string(
+           "slope rule on <N_t>: t_c1 = time from which the local slope stays within 10% of "
+           "alpha d; t_c2 = later time from which it stays outside that band")
     << ",\n";
   j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
   j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";

@@ -18,11 +18,12 @@ namespace gs {
 
 // The time-series columns whose exponents are fitted, in the order of EnsembleSums::Curves.
 inline constexpr std::array<const char*, 4> kFittedColumns = {"active", "energy", "radius_rms",
-                                                               "speed_rms"};
+                                                              "speed_rms"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
 inline constexpr std::array<const char*, 9> kSnapshotScalars = {
-    "packing_typical", "packing_upper", "packing_mean", "inner_correlation", "inner_outer_ratio",
-    "inner_speed", "outer_speed", "R_outside_fraction", "v_outside_fraction"};
+    "packing_typical",   "packing_upper",      "packing_mean",
+    "inner_correlation", "inner_outer_ratio",  "inner_speed",
+    "outer_speed",       "R_outside_fraction", "v_outside_fraction"};
 
 class EnsembleSums {
  public:

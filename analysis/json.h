@@ -9,16 +9,26 @@
 
 namespace gs {
 
-inline std::string json_number(double x) { return std::isfinite(x) ? format_double(x) : "null"; }
+inline std::string json_number(double x) {
+  return std::isfinite(x) ? format_double(x) : "null";
+}
 
 inline std::string json_string(std::string_view s) {
   std::string o = "\"";
   for (char ch : s) {
     switch (ch) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
+      case '"':
+        o += "\\\"";
+        break;
+      case '\\':
+        o += "\\\\";
+        break;
+      case '\n':
+        o += "\\n";
+        break;
+      case '\t':
+        o += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(ch) < 0x20) {
           char buf[8];

@@ -190,7 +190,8 @@ PowerLawFit fit_power_law_bootstrap(std::span<const double> t,
   const std::size_t m = realisations.size();
   if (m < 2) throw UserError("bootstrap needs at least 2 realisations, got " + std::to_string(m));
   if (o.resamples < 10) throw UserError("bootstrap needs at least 10 resamples");
-  if (!(o.confidence > 0 && o.confidence < 1)) throw UserError("bootstrap confidence must be in (0, 1)");
+  if (!(o.confidence > 0 && o.confidence < 1))
+    throw UserError("bootstrap confidence must be in (0, 1)");
   for (std::size_t k = 0; k < m; ++k)
     if (realisations[k].size() != t.size())
       throw UserError("realisation " + std::to_string(k) + " has " +

@@ -1,9 +1,9 @@
 #include "analysis/realisation.h"
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "sim/engine.h"
 #include "sim/error.h"
@@ -50,16 +50,38 @@ Histogram get_histogram(const Table& rows, std::size_t first, std::size_t bins,
   return h;
 }
 
-const std::vector<std::string> kDistributionColumns = {
-    "t",          "bin",        "R_lo",          "R_hi",         "P_R",
-    "v_lo",       "v_hi",       "P_v",           "profile_count", "profile_density",
-    "profile_speed_sum", "profile_radial_velocity_sum", "packing_lo", "packing_hi", "P_packing"};
+const std::vector<std::string> kDistributionColumns = {"t",
+                                                       "bin",
+                                                       "R_lo",
+                                                       "R_hi",
+                                                       "P_R",
+                                                       "v_lo",
+                                                       "v_hi",
+                                                       "P_v",
+                                                       "profile_count",
+                                                       "profile_density",
+                                                       "profile_speed_sum",
+                                                       "profile_radial_velocity_sum",
+                                                       "packing_lo",
+                                                       "packing_hi",
+                                                       "P_packing"};
 
-const std::vector<std::string> kScalarColumns = {
-    "t",           "R_samples",      "R_outside",        "v_samples",      "v_outside",
-    "packing_samples", "packing_outside", "packing_typical", "packing_upper", "packing_mean",
-    "packing_cell_side", "inner_correlation", "inner_median_radius", "inner_speed", "outer_speed",
-    "inner_outer_ratio"};
+const std::vector<std::string> kScalarColumns = {"t",
+                                                 "R_samples",
+                                                 "R_outside",
+                                                 "v_samples",
+                                                 "v_outside",
+                                                 "packing_samples",
+                                                 "packing_outside",
+                                                 "packing_typical",
+                                                 "packing_upper",
+                                                 "packing_mean",
+                                                 "packing_cell_side",
+                                                 "inner_correlation",
+                                                 "inner_median_radius",
+                                                 "inner_speed",
+                                                 "outer_speed",
+                                                 "inner_outer_ratio"};
 
 }  // namespace
 
@@ -71,8 +93,7 @@ EnsembleSpec checked(EnsembleSpec spec) {
   validate(spec.physics);
   if (spec.physics.initial != Initial::Kick)
     throw UserError("--initial: ensembles average kicked gases only (use run for thermal starts)");
-  if (spec.physics.dim < 2)
-    throw UserError("--dim: ensembles measure bands in 2 or 3 dimensions");
+  if (spec.physics.dim < 2) throw UserError("--dim: ensembles measure bands in 2 or 3 dimensions");
   if (spec.realisations < 1) throw UserError("--realisations must be at least 1");
   if (spec.per_decade < 1 || spec.per_decade > 1000)
     throw UserError("--per-decade must be in [1, 1000]");
@@ -154,11 +175,15 @@ EnsembleSpec read_spec(const std::filesystem::path& file) {
   p.realisation = static_cast<std::uint64_t>(integer("realisation"));
   p.t_max = num("t-max");
   const std::string initial = str("initial"), site = str("kick-site");
-  if (initial != to_string(Initial::Kick)) throw UserError(file.string() + ": initial must be kick");
+  if (initial != to_string(Initial::Kick))
+    throw UserError(file.string() + ": initial must be kick");
   p.initial = Initial::Kick;
-  if (site == to_string(KickSite::Centre)) p.kick_site = KickSite::Centre;
-  else if (site == to_string(KickSite::Random)) p.kick_site = KickSite::Random;
-  else throw UserError(file.string() + ": unknown kick-site '" + site + "'");
+  if (site == to_string(KickSite::Centre))
+    p.kick_site = KickSite::Centre;
+  else if (site == to_string(KickSite::Random))
+    p.kick_site = KickSite::Random;
+  else
+    throw UserError(file.string() + ": unknown kick-site '" + site + "'");
   p.temperature = num("temperature");
   p.lattice = num("lattice");
   s.realisations = static_cast<std::uint64_t>(integer("realisations"));
@@ -187,7 +212,9 @@ Binning speed_binning(const EnsembleSpec& spec, double t) {
   return {.bins = spec.bins, .lo = 0, .hi = kSpeedRange * spec.physics.speed * std::pow(t, a - 1)};
 }
 
-Binning packing_binning(const EnsembleSpec& spec) { return {.bins = spec.bins, .lo = 0, .hi = 1}; }
+Binning packing_binning(const EnsembleSpec& spec) {
+  return {.bins = spec.bins, .lo = 0, .hi = 1};
+}
 
 std::vector<double> sample_times(const EnsembleSpec& spec) {
   return merge_times(log_times(0.1, spec.physics.t_max, spec.per_decade), spec.snapshot_times);
@@ -264,23 +291,22 @@ void write_realisation(const std::filesystem::path& dir, const Realisation& r) {
     put_histogram(dist, first, m.speed, "v");
     put_histogram(dist, first, m.packing, "packing");
     first += bins;
-    const std::vector<double> row = {
-        m.t,
-        double(m.radius.samples),
-        double(m.radius.outside),
-        double(m.speed.samples),
-        double(m.speed.outside),
-        double(m.packing.samples),
-        double(m.packing.outside),
-        m.band.typical,
-        m.band.upper,
-        m.band.mean,
-        m.band.cell_side,
-        m.inner.correlation,
-        m.inner.median_radius,
-        m.inner.inner_speed,
-        m.inner.outer_speed,
-        m.inner.ratio};
+    const std::vector<double> row = {m.t,
+                                     double(m.radius.samples),
+                                     double(m.radius.outside),
+                                     double(m.speed.samples),
+                                     double(m.speed.outside),
+                                     double(m.packing.samples),
+                                     double(m.packing.outside),
+                                     m.band.typical,
+                                     m.band.upper,
+                                     m.band.mean,
+                                     m.band.cell_side,
+                                     m.inner.correlation,
+                                     m.inner.median_radius,
+                                     m.inner.inner_speed,
+                                     m.inner.outer_speed,
+                                     m.inner.ratio};
     scalars.add_row(row);
   }
   write_csv(dist, dir / "distributions.csv");
@@ -302,13 +328,15 @@ Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t ind
     std::size_t bins = 0;
     while (first + bins < t.size() && t[first + bins] == tk) ++bins;
     if (bins < 1)
-      throw UserError((dir / "distributions.csv").string() + ": no rows for t = " + format_number(tk));
+      throw UserError((dir / "distributions.csv").string() +
+                      ": no rows for t = " + format_number(tk));
     SnapshotMeasures m;
     m.t = tk;
     auto s = [&](const char* name) { return sc.column(name)[k]; };
     m.radius = get_histogram(dist, first, bins, "R", s("R_samples"), s("R_outside"));
     m.speed = get_histogram(dist, first, bins, "v", s("v_samples"), s("v_outside"));
-    m.packing = get_histogram(dist, first, bins, "packing", s("packing_samples"), s("packing_outside"));
+    m.packing =
+        get_histogram(dist, first, bins, "packing", s("packing_samples"), s("packing_outside"));
     m.profile.edges = m.radius.edges;
     for (std::size_t b = 0; b < bins; ++b) {
       const double n = dist.column("profile_count")[first + b];
@@ -335,7 +363,8 @@ Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t ind
     first += bins;
   }
   if (first != t.size())
-    throw UserError((dir / "distributions.csv").string() + ": rows do not match snapshot_scalars.csv");
+    throw UserError((dir / "distributions.csv").string() +
+                    ": rows do not match snapshot_scalars.csv");
   return r;
 }
 

@@ -61,7 +61,7 @@ struct SnapshotMeasures {
 
 struct Realisation {
   std::uint64_t index = 0;
-  Table timeseries;  // the columns of Recorder on the shared grid
+  Table timeseries;                         // the columns of Recorder on the shared grid
   std::vector<SnapshotMeasures> snapshots;  // one per spec snapshot time
 };
 

@@ -116,8 +116,8 @@ Table parse_csv(std::string_view text, const std::string& source) {
       const auto f = fields[j];
       const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
       if (ec != std::errc() || end != f.data() + f.size() || f.empty())
-        throw UserError(where + "column '" + table.names[j] + "': not a number '" +
-                        std::string(f) + "'");
+        throw UserError(where + "column '" + table.names[j] + "': not a number '" + std::string(f) +
+                        "'");
       table.columns[j].push_back(x);
     }
   }

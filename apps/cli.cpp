@@ -13,7 +13,8 @@ std::string scalar(const toml::node& n, const std::string& key) {
   if (n.is_boolean()) return *n.value<bool>() ? "true" : "false";
   if (n.is_integer()) return std::to_string(*n.value<std::int64_t>());
   if (n.is_floating_point()) return format_double(*n.value<double>());
-  throw UserError("config file: key '" + key + "' has a value that is not a number, string or bool");
+  throw UserError("config file: key '" + key +
+                  "' has a value that is not a number, string or bool");
 }
 
 // CLI11 2.1 reads config files for the top-level app only, and its TOML reader accepts almost
@@ -70,8 +71,7 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
   sub.add_option("--seed", c.seed, "Master random seed")->capture_default_str();
   sub.add_option("--realisation", c.realisation, "Realisation index (selects random streams)")
       ->capture_default_str();
-  sub.add_option("--t-max", c.t_max, "Final time in units of diameter / v0")
-      ->capture_default_str();
+  sub.add_option("--t-max", c.t_max, "Final time in units of diameter / v0")->capture_default_str();
   sub.add_option_function<std::string>(
          "--initial",
          [&c](const std::string& v) {
@@ -109,10 +109,10 @@ std::filesystem::path prepare_output_dir(const std::string& dir, bool force) {
   const fs::path p(dir);
   std::error_code ec;
   if (fs::exists(p, ec)) {
-    if (!fs::is_directory(p, ec))
-      throw UserError("--out " + dir + ": exists and is not a folder");
+    if (!fs::is_directory(p, ec)) throw UserError("--out " + dir + ": exists and is not a folder");
     if (!fs::is_empty(p, ec) && !force)
-      throw UserError("--out " + dir + ": folder exists and is not empty (use --force to write into it)");
+      throw UserError("--out " + dir +
+                      ": folder exists and is not empty (use --force to write into it)");
   } else {
     fs::create_directories(p, ec);
     if (ec) throw UserError("--out " + dir + ": cannot create folder: " + ec.message());

@@ -53,8 +53,8 @@ void add_bench_command(CLI::App& app) {
         std::printf("  %-34s %14.6g %-4s %s\n", f.name.c_str(), f.value, f.unit.c_str(),
                     f.target.empty() ? "" : ("target " + f.target).c_str());
         json << (first ? "" : ",\n") << "  {\"case\": \"" << c.name << "\", \"figure\": \""
-             << f.name << "\", \"value\": " << json_number(f.value) << ", \"unit\": \""
-             << f.unit << "\"}";
+             << f.name << "\", \"value\": " << json_number(f.value) << ", \"unit\": \"" << f.unit
+             << "\"}";
         first = false;
       }
       std::fflush(stdout);

@@ -59,7 +59,8 @@ int run(const EnsembleOptions& o) {
   if (r.sums.count() == 0) throw UserError("interrupted before any realisation finished");
   const EnsembleFits fits = write_ensemble_folder(dir, r.sums, fit, wall, o.threads);
   if (!o.quiet) {
-    std::fprintf(stderr, "grainshock: %s %llu realisations in %.3g s on %d threads; results in %s\n",
+    std::fprintf(stderr,
+                 "grainshock: %s %llu realisations in %.3g s on %d threads; results in %s\n",
                  r.interrupted ? "interrupted after" : "finished",
                  static_cast<unsigned long long>(r.sums.count()), wall, o.threads, dir.c_str());
     for (const auto& e : fits.exponents)
@@ -86,8 +87,9 @@ void add_ensemble_command(CLI::App& app) {
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--per-decade", opt->per_decade, "Samples per decade of the logarithmic grid")
       ->capture_default_str();
-  sub->add_option("--snapshot-times", opt->snapshot_times,
-                  "Times of P(R,t), P(v,t), profiles and packing (default: t-max/4, t-max/2, t-max)")
+  sub->add_option(
+         "--snapshot-times", opt->snapshot_times,
+         "Times of P(R,t), P(v,t), profiles and packing (default: t-max/4, t-max/2, t-max)")
       ->delimiter(',');
   sub->add_option("--bins", opt->bins, "Bins of the distributions and profiles")
       ->capture_default_str();

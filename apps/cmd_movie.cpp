@@ -20,7 +20,8 @@ void add_movie_command(CLI::App& app) {
     FrontMovieOptions movie;
   };
   auto opt = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("movie", "Simulate one realisation and stream it into DIR/movie.mp4");
+  auto* sub =
+      app.add_subcommand("movie", "Simulate one realisation and stream it into DIR/movie.mp4");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
   add_output_options(*sub, opt->out, opt->force, opt->movie.quiet);
@@ -28,15 +29,20 @@ void add_movie_command(CLI::App& app) {
   sub->add_option("--frame-spacing", opt->movie.spacing,
                   "Frame times: lin (t-max/N apart) or log (from --t-start to --t-max)")
       ->capture_default_str();
-  sub->add_option("--t-start", opt->movie.t_start, "Time of the first frame with --frame-spacing log")
+  sub->add_option("--t-start", opt->movie.t_start,
+                  "Time of the first frame with --frame-spacing log")
       ->capture_default_str();
   sub->add_option("--codec", opt->movie.movie.codec, "h264 (falls back to mpeg4), libx264 or mpeg4")
       ->capture_default_str();
-  sub->add_option("--fps", opt->movie.movie.fps, "Frames per second of the movie")->capture_default_str();
-  sub->add_option("--crf", opt->movie.movie.crf, "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
+  sub->add_option("--fps", opt->movie.movie.fps, "Frames per second of the movie")
       ->capture_default_str();
-  sub->add_option("--width", opt->movie.movie.width, "Frame width in pixels")->capture_default_str();
-  sub->add_option("--height", opt->movie.movie.height, "Frame height in pixels")->capture_default_str();
+  sub->add_option("--crf", opt->movie.movie.crf,
+                  "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
+      ->capture_default_str();
+  sub->add_option("--width", opt->movie.movie.width, "Frame width in pixels")
+      ->capture_default_str();
+  sub->add_option("--height", opt->movie.movie.height, "Frame height in pixels")
+      ->capture_default_str();
   sub->add_option("--camera", opt->movie.camera,
                   "follow: the front, smoothly; fixed: the whole periodic box")
       ->capture_default_str();
@@ -59,7 +65,8 @@ void add_movie_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--elevation", opt->movie.elevation, "3D: camera elevation, degrees")
       ->capture_default_str();
-  sub->add_flag("--keep-frames", opt->movie.keep_frames, "Also write every frame as DIR/frames/*.png");
+  sub->add_flag("--keep-frames", opt->movie.keep_frames,
+                "Also write every frame as DIR/frames/*.png");
   sub->add_option("--gl", opt->movie.backend, "OpenGL context: auto, osmesa or egl")
       ->capture_default_str();
   sub->callback([opt] {

@@ -72,7 +72,9 @@ std::string time_tag(double t) {
   return format_number(t);
 }
 
-std::string snapshot_name(double t) { return "t_" + time_tag(t) + ".xyz"; }
+std::string snapshot_name(double t) {
+  return "t_" + time_tag(t) + ".xyz";
+}
 
 std::string summary_json(const RunOptions& o, const Simulation& sim, double setup_s, double run_s,
                          bool interrupted) {
@@ -159,8 +161,7 @@ void write_elastic_comparison(const std::filesystem::path& dir, const RunOptions
   PhysicsConfig c = o.physics;
   c.restitution = 1.0;
   c.t_max = 0.5 * o.physics.t_max;
-  if (!o.quiet)
-    std::fprintf(stderr, "grainshock: elastic comparison (r = 1) to t = %g\n", c.t_max);
+  if (!o.quiet) std::fprintf(stderr, "grainshock: elastic comparison (r = 1) to t = %g\n", c.t_max);
   auto sim = make_simulation(c);
   sim->run_until(c.t_max);
   const Snapshot s = sim->snapshot();

@@ -38,9 +38,12 @@ Size size_of(FiguresMode m, int d) {
 
 const char* to_string(FiguresMode m) {
   switch (m) {
-    case FiguresMode::Tiny: return "tiny";
-    case FiguresMode::Quick: return "quick";
-    default: return "full";
+    case FiguresMode::Tiny:
+      return "tiny";
+    case FiguresMode::Quick:
+      return "quick";
+    default:
+      return "full";
   }
 }
 

@@ -201,8 +201,8 @@ Plan make_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   style.field = render::parse_field(o.colour_by);
   style.background = render::parse_background(o.background);
   if (o.scale == "auto")
-    style.scale = style.field == render::Field::RadialVelocity ? render::Scale::Linear
-                                                                : render::Scale::Log;
+    style.scale =
+        style.field == render::Field::RadialVelocity ? render::Scale::Linear : render::Scale::Log;
   else if (o.scale == "lin" || o.scale == "log")
     style.scale = o.scale == "log" ? render::Scale::Log : render::Scale::Linear;
   else
@@ -268,34 +268,36 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
     auto sim = make_simulation(physics);
     Progress progress(o.quiet);
     auto clock = std::chrono::steady_clock::now();
-    stopped = !for_each_frame(*sim, times, progress, shots.empty() ? "movie" : "pass 2 of 2 (movie)",
-                              [&](std::size_t k) {
-      sim_s += seconds_since(clock);
-      auto t0 = std::chrono::steady_clock::now();
-      const Snapshot snap = sim->snapshot();
-      if (follow) aim(view, shots[k], snap, scans[k]);
-      render::Image img = renderer.render(snap, style, view);
-      render_s += seconds_since(t0);
-      if (o.keep_frames) {
-        t0 = std::chrono::steady_clock::now();
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05zu.png", k);
-        render::write_png((dir / "frames" / name).string(), img,
-                          render::png_text(snap.info, snap.size()));
-        png_s += seconds_since(t0);
-      }
-      t0 = std::chrono::steady_clock::now();
-      movie.add(std::move(img));
-      encode_s += seconds_since(t0);
-      clock = std::chrono::steady_clock::now();
-    });
+    stopped = !for_each_frame(*sim, times, progress,
+                              shots.empty() ? "movie" : "pass 2 of 2 (movie)", [&](std::size_t k) {
+                                sim_s += seconds_since(clock);
+                                auto t0 = std::chrono::steady_clock::now();
+                                const Snapshot snap = sim->snapshot();
+                                if (follow) aim(view, shots[k], snap, scans[k]);
+                                render::Image img = renderer.render(snap, style, view);
+                                render_s += seconds_since(t0);
+                                if (o.keep_frames) {
+                                  t0 = std::chrono::steady_clock::now();
+                                  char name[32];
+                                  std::snprintf(name, sizeof name, "frame_%05zu.png", k);
+                                  render::write_png((dir / "frames" / name).string(), img,
+                                                    render::png_text(snap.info, snap.size()));
+                                  png_s += seconds_since(t0);
+                                }
+                                t0 = std::chrono::steady_clock::now();
+                                movie.add(std::move(img));
+                                encode_s += seconds_since(t0);
+                                clock = std::chrono::steady_clock::now();
+                              });
     progress.done();
   }
 
   const auto t0 = std::chrono::steady_clock::now();
   const auto written = movie.frames_added();
-  if (written > 0) movie.finish();
-  else movie.discard();  // a movie without a frame would only pretend to be one
+  if (written > 0)
+    movie.finish();
+  else
+    movie.discard();  // a movie without a frame would only pretend to be one
   encode_s += seconds_since(t0);
   if (!o.quiet) {
     if (written > 0) {

@@ -7,7 +7,8 @@
 #include "sim/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"grainshock: event-driven simulation, analysis and rendering of a kicked granular gas"};
+  CLI::App app{
+      "grainshock: event-driven simulation, analysis and rendering of a kicked granular gas"};
   app.set_version_flag("--version", GRAINSHOCK_VERSION);
   app.require_subcommand(1);
   gs::app::add_run_command(app);

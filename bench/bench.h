@@ -8,16 +8,16 @@
 namespace gs::bench {
 
 struct Figure {
-  std::string name;   // e.g. "collisions_per_cpu_second"
+  std::string name;  // e.g. "collisions_per_cpu_second"
   double value = 0;
-  std::string unit;   // e.g. "1/s", "ms"
-  std::string target; // the target, in words, or empty ("< 1 s", ">= 2x EDMD")
+  std::string unit;    // e.g. "1/s", "ms"
+  std::string target;  // the target, in words, or empty ("< 1 s", ">= 2x EDMD")
 };
 
 struct Case {
-  std::string name;         // e.g. "sim/thermal3d_phi0.2"
+  std::string name;  // e.g. "sim/thermal3d_phi0.2"
   std::string description;
-  bool heavy = false;       // paper-scale cases, skipped unless asked for
+  bool heavy = false;  // paper-scale cases, skipped unless asked for
   std::function<std::vector<Figure>()> run;
 };
 

@@ -1,6 +1,7 @@
 // Wall time of `grainshock figures`: --quick measured end to end, --full estimated from a sample
 // of realisations of every case (the targets: ~10 min and < 30 min on 2 cores). The
 // command runs as a child process of this binary, exactly as a user would run it.
+#include <unistd.h>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -8,7 +9,6 @@
 #include <sstream>
 #include <string>
 #include <thread>
-#include <unistd.h>
 
 #include "bench/bench.h"
 #include "sim/error.h"
@@ -18,10 +18,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string self() { return fs::read_symlink("/proc/self/exe").string(); }
+std::string self() {
+  return fs::read_symlink("/proc/self/exe").string();
+}
 
 fs::path scratch(const std::string& name) {
-  auto d = fs::temp_directory_path() / ("grainshock_bench_" + name + "_" + std::to_string(::getpid()));
+  auto d =
+      fs::temp_directory_path() / ("grainshock_bench_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
 }
@@ -32,7 +35,8 @@ double run_figures(const std::string& args, const fs::path& out) {
   std::string cmd = "'";
   cmd.append(self()).append("' figures ").append(args).append(" --quiet --out '");
   cmd.append(out.string()).append("'");
-  if (std::system(cmd.c_str()) != 0) throw UserError("bench: `grainshock figures " + args + "` failed");
+  if (std::system(cmd.c_str()) != 0)
+    throw UserError("bench: `grainshock figures " + args + "` failed");
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -47,7 +51,9 @@ double json_value(const fs::path& file, const std::string& key) {
   return std::stod(text.substr(at + key.size() + 4));
 }
 
-int threads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+int threads() {
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 }  // namespace
 
@@ -66,15 +72,16 @@ void add_figures_cases(std::vector<Case>& cases) {
                                                 {"threads", double(threads()), "", ""}};
                    }});
   cases.push_back({"figures/full_estimate",
-                   "grainshock figures --full --estimate: 2 realisations per case, extrapolated", true,
-                   [] {
+                   "grainshock figures --full --estimate: 2 realisations per case, extrapolated",
+                   true, [] {
                      const auto out = scratch("full");
                      const double s = run_figures("--full --estimate --sample 2", out);
                      const double est = json_value(out / "estimate.json", "estimated_wall_seconds");
                      fs::remove_all(out);
-                     return std::vector<Figure>{{"sample_wall_seconds", s, "s", ""},
-                                                {"full_estimated_wall_seconds", est, "s", "< 1800 s on 2 cores"},
-                                                {"threads", double(threads()), "", ""}};
+                     return std::vector<Figure>{
+                         {"sample_wall_seconds", s, "s", ""},
+                         {"full_estimated_wall_seconds", est, "s", "< 1800 s on 2 cores"},
+                         {"threads", double(threads()), "", ""}};
                    }});
 }
 

@@ -20,9 +20,9 @@ namespace {
 using render::Image;
 
 // A 2D kick seen from above: a dark background, dim grey particles at rest and a ring-shaped band
-// of 2e4 particles coloured by speed, each moving outward at its own speed with some sideways drift,
-// so that the band both moves and changes inside. Flat or noise frames would make
-// the encoder look much faster or much slower than it is on real movies.
+// of 2e4 particles coloured by speed, each moving outward at its own speed with some sideways
+// drift, so that the band both moves and changes inside. Flat or noise frames would make the
+// encoder look much faster or much slower than it is on real movies.
 class Scene {
  public:
   Scene(int w, int h) : w_(w), h_(h) {
@@ -196,9 +196,10 @@ void add_movie_cases(std::vector<Case>& cases) {
   cases.push_back({"movie/encode_h264_720p",
                    "movie writer alone, 1280x720, libx264 CRF 18 veryfast, 2e4 coloured discs",
                    false, [] { return encode(1280, 720, "h264", ""); }});
-  cases.push_back({"movie/encode_h264_1080p",
-                   "movie writer alone, 1920x1080, libx264 CRF 18 veryfast, 2e4 coloured discs",
-                   false, [] { return encode(1920, 1080, "h264", ">= 30 (encoding never the bottleneck)"); }});
+  cases.push_back(
+      {"movie/encode_h264_1080p",
+       "movie writer alone, 1920x1080, libx264 CRF 18 veryfast, 2e4 coloured discs", false,
+       [] { return encode(1920, 1080, "h264", ">= 30 (encoding never the bottleneck)"); }});
   cases.push_back({"movie/encode_mpeg4_1080p",
                    "movie writer alone, 1920x1080, MPEG-4 Part 2 fallback (qscale 3)", false,
                    [] { return encode(1920, 1080, "mpeg4", ">= 30"); }});

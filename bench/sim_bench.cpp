@@ -57,15 +57,15 @@ std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
   const double cpu2 = cpu_seconds();
   const auto& st = sim->stats();
   const double run = cpu2 - cpu1;
-  return {{"setup_cpu_seconds", cpu1 - cpu0, "s", ""},
-          {"run_cpu_seconds", run, "s", target},
-          {"collisions", static_cast<double>(st.collisions), "", ""},
-          {"events", static_cast<double>(st.events), "", ""},
-          {"active", static_cast<double>(sim->sample().active), "", ""},
-          {"collisions_per_cpu_second", static_cast<double>(st.collisions) / run, "1/s", ""},
-          {"cpu_microseconds_per_collision", 1e6 * run / static_cast<double>(st.collisions), "us",
-           ""},
-          {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
+  return {
+      {"setup_cpu_seconds", cpu1 - cpu0, "s", ""},
+      {"run_cpu_seconds", run, "s", target},
+      {"collisions", static_cast<double>(st.collisions), "", ""},
+      {"events", static_cast<double>(st.events), "", ""},
+      {"active", static_cast<double>(sim->sample().active), "", ""},
+      {"collisions_per_cpu_second", static_cast<double>(st.collisions) / run, "1/s", ""},
+      {"cpu_microseconds_per_collision", 1e6 * run / static_cast<double>(st.collisions), "us", ""},
+      {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
 }
 
 std::vector<Figure> rsa_2e6() {
@@ -87,13 +87,14 @@ void add_sim_cases(std::vector<Case>& cases) {
                    false, [] { return thermal3d(0.5); }});
   cases.push_back({"sim/kick2d_paper", "2D kick, N = 2.5e5, r = 0.8, to t = 87581", false,
                    [] { return kick(2, 250000, "< 1 s"); }});
-  cases.push_back({"sim/rsa3d_2e6", "random sequential addition of 2e6 spheres at n = 0.25", false,
-                   rsa_2e6});
+  cases.push_back(
+      {"sim/rsa3d_2e6", "random sequential addition of 2e6 spheres at n = 0.25", false, rsa_2e6});
   cases.push_back({"sim/kick3d_2e5", "3D kick, N = 2e5, r = 0.8, to t = 87581", false,
                    [] { return kick(3, 200000, ""); }});
-  cases.push_back({"sim/kick3d_2e6", "3D kick, N = 2e6, r = 0.8, to t = 87581 (cost per "
-                   "collision within 1.2x of N = 2e5)", true,
-                   [] { return kick(3, 2000000, ""); }});
+  cases.push_back({"sim/kick3d_2e6",
+                   "3D kick, N = 2e6, r = 0.8, to t = 87581 (cost per "
+                   "collision within 1.2x of N = 2e5)",
+                   true, [] { return kick(3, 2000000, ""); }});
 }
 
 }  // namespace gs::bench

@@ -2,6 +2,8 @@
 // each: viridis, inferno, magma (van der Walt & Smith), cividis (Nunez et al.), turbo (Mikhailov).
 #include "render/colormap_data.h"
 
+// One sample per line, as published; clang-format would pack them into unreadable rows.
+// clang-format off
 namespace gs::render {
 
 const float kViridisData[256][3] = {

@@ -41,7 +41,9 @@ std::string shortest(double v) {
   return buf;
 }
 
-int round_up_even(int n) { return n + (n & 1); }
+int round_up_even(int n) {
+  return n + (n & 1);
+}
 
 // Copies `src` into `dst` (even size, at least one larger), repeating the last column and row.
 // Repeating rather than padding with black keeps the border chroma sample the colour of the edge.
@@ -109,13 +111,15 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
   const std::string name = path_.string();
   check_movie_options(o);
   const AVCodec* codec = find_encoder(o.codec);
-  if (!codec) throw UserError("movie '" + name + "': codec '" + o.codec + "' is not in this libavcodec");
+  if (!codec)
+    throw UserError("movie '" + name + "': codec '" + o.codec + "' is not in this libavcodec");
   encoder_name_ = codec->name;
   const bool x264 = encoder_name_ == "libx264";
 
   const AVOutputFormat* container = av_guess_format(nullptr, path_.filename().c_str(), nullptr);
   if (!container)
-    throw UserError("movie '" + name + "': cannot tell the container from the file name (use .mp4)");
+    throw UserError("movie '" + name +
+                    "': cannot tell the container from the file name (use .mp4)");
   if (avformat_query_codec(container, codec->id, FF_COMPLIANCE_NORMAL) != 1)
     throw UserError("movie '" + name + "': container '" + container->name + "' cannot hold " +
                     encoder_name_);
@@ -170,8 +174,10 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
     const int opened = avcodec_open2(enc, codec, &codec_opts);
     const int unused_opts = av_dict_count(codec_opts);
     av_dict_free(&codec_opts);
-    check_av(opened, path_, (std::string("cannot open encoder ") + encoder_name_ +
-                             (x264 ? " with preset '" + o.preset + "'" : std::string())).c_str());
+    check_av(opened, path_,
+             (std::string("cannot open encoder ") + encoder_name_ +
+              (x264 ? " with preset '" + o.preset + "'" : std::string()))
+                 .c_str());
     GS_CHECK_MSG(unused_opts == 0, "encoder ignored an option");
 
     av.stream = avformat_new_stream(av.format, nullptr);
@@ -241,9 +247,8 @@ void MovieWriter::add(Image frame) {
   GS_CHECK(frame.width == options_.width && frame.height == options_.height);
   GS_CHECK(frame.rgba.size() == static_cast<std::size_t>(frame.width) * frame.height * 4);
   std::unique_lock lock(mutex_);
-  cv_.wait(lock, [&] {
-    return static_cast<int>(queue_.size()) < options_.queue_frames || worker_done_;
-  });
+  cv_.wait(lock,
+           [&] { return static_cast<int>(queue_.size()) < options_.queue_frames || worker_done_; });
   if (worker_done_) {  // before closing_, the worker only stops on an error
     lock.unlock();
     finish();  // rethrows the worker's error
@@ -271,8 +276,8 @@ void MovieWriter::finish() {
   std::filesystem::rename(temp_path_, path_, ec);
   if (ec) {
     remove_partial();
-    throw UserError("movie '" + path_.string() + "': cannot move the finished file into place: " +
-                    ec.message());
+    throw UserError("movie '" + path_.string() +
+                    "': cannot move the finished file into place: " + ec.message());
   }
 }
 
@@ -349,8 +354,8 @@ void MovieWriter::encode_frame(const Image& image) {
     GS_CHECK(av_frame_make_writable(av.frame) >= 0);
     const std::uint8_t* planes[1] = {src->rgba.data()};
     const int strides[1] = {src->width * 4};
-    const int rows = sws_scale(av.sws, planes, strides, 0, src->height, av.frame->data,
-                               av.frame->linesize);
+    const int rows =
+        sws_scale(av.sws, planes, strides, 0, src->height, av.frame->data, av.frame->linesize);
     GS_CHECK(rows == encoded_height_);
     av.frame->pts = av.next_pts++;
     frame = av.frame;

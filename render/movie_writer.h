@@ -93,8 +93,8 @@ class MovieWriter {
   std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<Image> queue_;
-  bool closing_ = false;        // no more frames: the worker drains, flushes and writes the trailer
-  bool cancelled_ = false;      // stop at once, drop the queue
+  bool closing_ = false;    // no more frames: the worker drains, flushes and writes the trailer
+  bool cancelled_ = false;  // stop at once, drop the queue
   bool worker_done_ = false;
   std::exception_ptr worker_error_;
   std::thread worker_;

@@ -23,13 +23,18 @@ double max_rsa_density(int dim) {
   // A little under the jamming densities (1D: Renyi 0.7476; 2D: 0.547 * 4/pi = 0.697;
   // 3D: 0.384 * 6/pi = 0.733), where the last particles still find room quickly.
   switch (dim) {
-    case 1: return 0.74;
-    case 2: return 0.69;
-    default: return 0.73;
+    case 1:
+      return 0.74;
+    case 2:
+      return 0.69;
+    default:
+      return 0.73;
   }
 }
 
-static std::string num(double x) { return format_double(x); }
+static std::string num(double x) {
+  return format_double(x);
+}
 
 void validate(const PhysicsConfig& c) {
   auto fail = [](const std::string& m) { throw UserError(m); };
@@ -61,8 +66,12 @@ void validate(const PhysicsConfig& c) {
          " is under 3 diameters; use more particles");
 }
 
-const char* to_string(Initial i) { return i == Initial::Kick ? "kick" : "thermal"; }
-const char* to_string(KickSite k) { return k == KickSite::Random ? "random" : "centre"; }
+const char* to_string(Initial i) {
+  return i == Initial::Kick ? "kick" : "thermal";
+}
+const char* to_string(KickSite k) {
+  return k == KickSite::Random ? "random" : "centre";
+}
 
 std::string to_toml(const PhysicsConfig& c) {
   std::ostringstream o;

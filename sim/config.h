@@ -12,17 +12,17 @@ enum class KickSite { Random, Centre };
 struct PhysicsConfig {
   int dim = 2;
   std::int64_t particles = 250000;  // the paper's 2D system
-  double density = 0.25;      // number density n (diameter 1)
-  double restitution = 0.1;   // r; the paper's Fig. 1(a)
-  double cutoff = 1e-4;       // delta: collisions slower than this are elastic
-  double speed = 1.0;         // v0 of the kicked particle
+  double density = 0.25;            // number density n (diameter 1)
+  double restitution = 0.1;         // r; the paper's Fig. 1(a)
+  double cutoff = 1e-4;             // delta: collisions slower than this are elastic
+  double speed = 1.0;               // v0 of the kicked particle
   std::uint64_t seed = 1;
   std::uint64_t realisation = 0;  // index within an ensemble; streams are keyed by it
-  double t_max = 100000.0;  // paper time 5e4 in 2D: the last time of Fig. 1(a)
+  double t_max = 100000.0;        // paper time 5e4 in 2D: the last time of Fig. 1(a)
   Initial initial = Initial::Kick;
   KickSite kick_site = KickSite::Random;
-  double temperature = 1.0;   // thermal initial state only
-  double lattice = 0.0;       // 1D lattice spacing a; 0 means random positions
+  double temperature = 1.0;  // thermal initial state only
+  double lattice = 0.0;      // 1D lattice spacing a; 0 means random positions
 
   // Side of the periodic cubic box, L = (N/n)^(1/d).
   double box() const;

@@ -18,8 +18,7 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   sort_by_cell(init);
   kin_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
+  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
   cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
   head_.assign(grid_.cell_count(), -1);
@@ -334,7 +333,8 @@ void Engine<D>::cross_cell(std::int32_t i) {
     return;
   }
   const Vec<D> xi = kin_[i].x;
-  scan_cells(i, xi, [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
+  scan_cells(i, xi,
+             [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
   predict_crossing(i, xi);
   schedule(i);
 }
@@ -421,9 +421,12 @@ double Engine<D>::max_overlap_now() const {
 std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c) {
   validate(c);
   switch (c.dim) {
-    case 1: return std::make_unique<Engine<1>>(c, make_initial_state<1>(c));
-    case 2: return std::make_unique<Engine<2>>(c, make_initial_state<2>(c));
-    default: return std::make_unique<Engine<3>>(c, make_initial_state<3>(c));
+    case 1:
+      return std::make_unique<Engine<1>>(c, make_initial_state<1>(c));
+    case 2:
+      return std::make_unique<Engine<2>>(c, make_initial_state<2>(c));
+    default:
+      return std::make_unique<Engine<3>>(c, make_initial_state<3>(c));
   }
 }
 

@@ -26,11 +26,11 @@ namespace gs {
 // Observables of the moving particles at one instant, with the definitions of DESIGN.md.
 struct Sample {
   double t = 0;
-  std::int64_t active = 0;   // particles that have collided at least once
-  double energy = 0;         // total kinetic energy (unit masses)
-  double radius_rms = 0;     // rms distance of active particles from their centre of mass
-  double speed_rms = 0;      // rms speed of active particles
-  double anisotropy = 0;     // A of the active particles' gyration tensor (sim/observables.h)
+  std::int64_t active = 0;  // particles that have collided at least once
+  double energy = 0;        // total kinetic energy (unit masses)
+  double radius_rms = 0;    // rms distance of active particles from their centre of mass
+  double speed_rms = 0;     // rms speed of active particles
+  double anisotropy = 0;    // A of the active particles' gyration tensor (sim/observables.h)
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   std::int64_t collisions = 0;
   std::int64_t events = 0;
@@ -121,8 +121,8 @@ class Engine final : public Simulation {
     Vec<D> x;
     double t;
     Vec<D> v;
-    std::int32_t next;       // next particle in the same cell, or -1
-    std::uint32_t counter;   // bumped at every velocity change
+    std::int32_t next;      // next particle in the same cell, or -1
+    std::uint32_t counter;  // bumped at every velocity change
   };
   std::vector<Kinematics> kin_;
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots

@@ -14,7 +14,8 @@ class UserError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-[[noreturn]] void check_failed(const char* expr, const char* file, int line, const std::string& msg);
+[[noreturn]] void check_failed(const char* expr, const char* file, int line,
+                               const std::string& msg);
 
 }  // namespace gs
 
@@ -24,8 +25,8 @@ class UserError : public std::runtime_error {
       ::gs::check_failed(#cond, __FILE__, __LINE__, std::string()); \
   } while (0)
 
-#define GS_CHECK_MSG(cond, msg)                                   \
-  do {                                                            \
-    if (!(cond)) [[unlikely]]                                     \
-      ::gs::check_failed(#cond, __FILE__, __LINE__, (msg));       \
+#define GS_CHECK_MSG(cond, msg)                             \
+  do {                                                      \
+    if (!(cond)) [[unlikely]]                               \
+      ::gs::check_failed(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

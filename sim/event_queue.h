@@ -24,9 +24,9 @@ struct AlignedAllocator {
   template <class U>
   AlignedAllocator(const AlignedAllocator<U, Align>&) {}
   T* allocate(std::size_t n) {
-    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{Align}));
+    return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{Align}));
   }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{Align}); }
+  void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{Align}); }
   template <class U>
   bool operator==(const AlignedAllocator<U, Align>&) const {
     return true;

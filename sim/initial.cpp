@@ -53,7 +53,8 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
 
 template <int D>
 VecArray<D> cubic_lattice(std::int64_t n, double box) {
-  const auto k = static_cast<std::int64_t>(std::ceil(std::pow(static_cast<double>(n), 1.0 / D) - 1e-9));
+  const auto k =
+      static_cast<std::int64_t>(std::ceil(std::pow(static_cast<double>(n), 1.0 / D) - 1e-9));
   const double a = box / static_cast<double>(k);
   GS_CHECK_MSG(a >= 1.0, "lattice spacing below one diameter");
   VecArray<D> pos(static_cast<std::size_t>(n));
@@ -124,8 +125,9 @@ void centre_on(InitialState<D>& s, double box) {
     for (int k = 0; k < D; ++k) x[k] -= box * std::floor(x[k] / box);
   }
   if constexpr (D == 1) {
-    const auto first = std::min_element(s.position.begin(), s.position.end(),
-                                        [](const Vec<1>& a, const Vec<1>& b) { return a[0] < b[0]; });
+    const auto first =
+        std::min_element(s.position.begin(), s.position.end(),
+                         [](const Vec<1>& a, const Vec<1>& b) { return a[0] < b[0]; });
     const auto rotate_by = first - s.position.begin();
     std::rotate(s.position.begin(), first, s.position.end());
     std::rotate(s.velocity.begin(), s.velocity.begin() + rotate_by, s.velocity.end());
@@ -147,7 +149,8 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
   if constexpr (D == 1) {
     if (c.lattice > 0) {
       s.position.resize(n);
-      for (std::size_t i = 0; i < n; ++i) s.position[i][0] = (static_cast<double>(i) + 0.5) * c.lattice;
+      for (std::size_t i = 0; i < n; ++i)
+        s.position[i][0] = (static_cast<double>(i) + 0.5) * c.lattice;
     } else {
       s.position = random_rods(c.particles, box, pos_rng);
     }

@@ -22,7 +22,9 @@ int checked_dim(const Snapshot& s) {
   return d;
 }
 
-bool is_active(const Snapshot& s, std::size_t i) { return s.active.empty() || s.active[i] != 0; }
+bool is_active(const Snapshot& s, std::size_t i) {
+  return s.active.empty() || s.active[i] != 0;
+}
 
 void require_velocities(const Snapshot& s) {
   if (!s.has_velocity()) throw UserError("snapshot has no velocities (speeds asked for)");
@@ -39,9 +41,12 @@ Eigen::Vector3d project(const Eigen::Vector3d& x, int d) {
 // Volume of a d-dimensional ball of radius a.
 double ball_volume(int d, double a) {
   switch (d) {
-    case 1: return 2 * a;
-    case 2: return std::numbers::pi * a * a;
-    default: return 4.0 / 3.0 * std::numbers::pi * a * a * a;
+    case 1:
+      return 2 * a;
+    case 2:
+      return std::numbers::pi * a * a;
+    default:
+      return 4.0 / 3.0 * std::numbers::pi * a * a * a;
   }
 }
 
@@ -100,7 +105,7 @@ Shape measure_shape(const Snapshot& s) {
   sh.centre_velocity = vc / n;
   sh.speed_rms = std::sqrt(v2 / n);
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(sh.gyration.topLeftCorner(d, d),
-                                                         Eigen::EigenvaluesOnly);
+                                                        Eigen::EigenvaluesOnly);
   GS_CHECK(solver.info() == Eigen::Success);
   // Eigen returns them ascending; round-off can leave a tiny negative one for a flat set.
   for (int k = 0; k < d; ++k) sh.eigenvalues[k] = std::max(0.0, solver.eigenvalues()[d - 1 - k]);
@@ -178,7 +183,7 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   };
 
   struct Cell {
-    double volume = 0;          // sum of particle volumes
+    double volume = 0;  // sum of particle volumes
     std::uint32_t active = 0;
   };
   std::unordered_map<std::uint64_t, Cell> cells;

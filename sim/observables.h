@@ -21,9 +21,10 @@ struct Shape {
   Eigen::Vector3d centre_velocity = Eigen::Vector3d::Zero();  // zero if no velocities
   double radius_rms = 0;  // R_t = sqrt(trace of the gyration tensor)
   double speed_rms = 0;   // v_t, lab frame; zero if no velocities
-  Eigen::Matrix3d gyration = Eigen::Matrix3d::Zero();  // (1/N) sum (x - c)(x - c)^T, dim x dim block
+  Eigen::Matrix3d gyration =
+      Eigen::Matrix3d::Zero();  // (1/N) sum (x - c)(x - c)^T, dim x dim block
   Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();  // descending; entries beyond dim are 0
-  double anisotropy = 0;  // anisotropy_index(dim, eigenvalues)
+  double anisotropy = 0;                                  // anisotropy_index(dim, eigenvalues)
 };
 
 // Throws UserError if the snapshot's dimension is not 1, 2 or 3.
@@ -54,8 +55,8 @@ Histogram scaled_speed_distribution(const Histogram& p_v, double time, double al
 // of each cell (all particles in it, active or not, times the volume of their sphere, over the
 // cell volume) is taken for every cell that holds at least one active (band) particle.
 struct PackingOptions {
-  double cell = 10.0;                          // the paper's cell side
-  double upper_quantile = 0.9;                 // for BandPacking::upper
+  double cell = 10.0;                             // the paper's cell side
+  double upper_quantile = 0.9;                    // for BandPacking::upper
   Binning binning{.bins = 50, .lo = 0, .hi = 1};  // for the distribution of cell fractions
 };
 
@@ -64,10 +65,10 @@ struct BandPacking {
   static constexpr const char* definition =
       "mean packing fraction of cells of side ~10 holding band (active) particles, each cell "
       "weighted by its number of active particles";
-  double cell_side = 10;  // actual side: the box is cut into a whole number of cells >= cell
-  std::vector<double> fraction;           // per band cell, in cell-index order
-  std::vector<std::uint32_t> active;      // active particles in that cell
-  Histogram distribution;                 // of `fraction`, each band cell counted once
+  double cell_side = 10;         // actual side: the box is cut into a whole number of cells >= cell
+  std::vector<double> fraction;  // per band cell, in cell-index order
+  std::vector<std::uint32_t> active;  // active particles in that cell
+  Histogram distribution;             // of `fraction`, each band cell counted once
   // Cells on the edge of the band are only partly filled; weighting by the active particles
   // they hold makes the typical value that of the cells where the band's particles actually sit.
   double typical = std::numeric_limits<double>::quiet_NaN();
@@ -86,10 +87,10 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options = {});
 
 // Profiles of active particles against distance from their centre of mass, in shells.
 struct RadialProfile {
-  std::vector<double> edges;          // bins + 1 shell radii
-  std::vector<std::uint64_t> count;   // active particles per shell
-  std::vector<double> density;        // count / shell volume (length in 1D, area in 2D)
-  std::vector<double> mean_speed;     // lab-frame |v|; NaN in empty shells
+  std::vector<double> edges;         // bins + 1 shell radii
+  std::vector<std::uint64_t> count;  // active particles per shell
+  std::vector<double> density;       // count / shell volume (length in 1D, area in 2D)
+  std::vector<double> mean_speed;    // lab-frame |v|; NaN in empty shells
   // v . (x - c)/|x - c| with v taken relative to the centre-of-mass velocity of the active
   // particles: the kick gives the band a net drift ~ v0 / N_t, of the order of v_t itself when
   // v_t R_t^d ~ const (the paper's radial momentum argument), so the lab frame would mix it in.
@@ -102,11 +103,12 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning = {});
 
 // "Faster particles on the inner edge of the band" as numbers.
 struct InnerEdge {
-  double correlation = std::numeric_limits<double>::quiet_NaN();  // Pearson(speed, R); < 0: faster inside
+  double correlation =
+      std::numeric_limits<double>::quiet_NaN();  // Pearson(speed, R); < 0: faster inside
   double median_radius = std::numeric_limits<double>::quiet_NaN();
   double inner_speed = std::numeric_limits<double>::quiet_NaN();  // mean speed, R < median
   double outer_speed = std::numeric_limits<double>::quiet_NaN();  // mean speed, R >= median
-  double ratio = std::numeric_limits<double>::quiet_NaN();        // inner / outer; > 1: faster inside
+  double ratio = std::numeric_limits<double>::quiet_NaN();  // inner / outer; > 1: faster inside
 };
 InnerEdge inner_edge_speed(const Snapshot& s);
 

@@ -8,8 +8,8 @@
 namespace gs {
 
 Recorder::Recorder(const PhysicsConfig& c) : config_(c) {
-  columns_ = {"t",          "t_paper", "active", "energy",   "radius_rms",
-              "speed_rms",  "anisotropy", "collisions", "events", "overlaps", "px"};
+  columns_ = {"t",          "t_paper",    "active", "energy",   "radius_rms", "speed_rms",
+              "anisotropy", "collisions", "events", "overlaps", "px"};
   if (c.dim >= 2) columns_.push_back("py");
   if (c.dim >= 3) columns_.push_back("pz");
   if (c.initial == Initial::Thermal) {

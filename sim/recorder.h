@@ -1,9 +1,9 @@
 #pragma once
 // Turns the state of a running simulation into rows of timeseries.csv. The columns are the
 // design's contract: t, t_paper, active, energy, radius_rms, speed_rms, anisotropy (A of the
-// active particles), collisions, events, overlaps, momentum (px, py, pz as d allows) and, for thermal starts, the pressure from the
-// collision virial and the collision rate per particle, both averaged over the interval since
-// the previous row.
+// active particles), collisions, events, overlaps, momentum (px, py, pz as d allows) and, for
+// thermal starts, the pressure from the collision virial and the collision rate per particle, both
+// averaged over the interval since the previous row.
 #include <string>
 #include <vector>
 

@@ -23,11 +23,11 @@ struct SnapshotInfo {
 
 struct Snapshot {
   SnapshotInfo info;
-  std::vector<Eigen::Vector3d> position;   // unwrapped
-  std::vector<Eigen::Vector3d> velocity;   // empty if the file had none
-  std::vector<double> radius;              // 0.5 for the engine's unit-diameter spheres
-  std::vector<std::uint8_t> active;        // 1 once a particle has collided
-  std::vector<double> first_collision;     // time of first collision (-1: never); may be empty
+  std::vector<Eigen::Vector3d> position;  // unwrapped
+  std::vector<Eigen::Vector3d> velocity;  // empty if the file had none
+  std::vector<double> radius;             // 0.5 for the engine's unit-diameter spheres
+  std::vector<std::uint8_t> active;       // 1 once a particle has collided
+  std::vector<double> first_collision;    // time of first collision (-1: never); may be empty
 
   std::size_t size() const { return position.size(); }
   bool has_velocity() const { return !velocity.empty(); }

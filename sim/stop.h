@@ -12,7 +12,9 @@ namespace detail {
 inline std::atomic<int> stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free);
 
-extern "C" inline void on_stop_signal(int sig) { stop_signal.store(sig, std::memory_order_relaxed); }
+extern "C" inline void on_stop_signal(int sig) {
+  stop_signal.store(sig, std::memory_order_relaxed);
+}
 }  // namespace detail
 
 // Installs the handlers for SIGINT and SIGTERM. One-shot (SA_RESETHAND): a second Ctrl-C kills the
@@ -26,13 +28,21 @@ inline void install_stop_handlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
-inline bool stop_requested() { return detail::stop_signal.load(std::memory_order_relaxed) != 0; }
+inline bool stop_requested() {
+  return detail::stop_signal.load(std::memory_order_relaxed) != 0;
+}
 
 // The signal that asked for the stop (SIGINT, SIGTERM), or 0. Exit with 128 + it, as shells expect.
-inline int stop_signal() { return detail::stop_signal.load(std::memory_order_relaxed); }
+inline int stop_signal() {
+  return detail::stop_signal.load(std::memory_order_relaxed);
+}
 
 // For tests and for code that wants the same wind-down without a signal; -1 when not a signal.
-inline void request_stop(int sig = -1) { detail::stop_signal.store(sig, std::memory_order_relaxed); }
-inline void clear_stop() { detail::stop_signal.store(0, std::memory_order_relaxed); }
+inline void request_stop(int sig = -1) {
+  detail::stop_signal.store(sig, std::memory_order_relaxed);
+}
+inline void clear_stop() {
+  detail::stop_signal.store(0, std::memory_order_relaxed);
+}
 
 }  // namespace gs

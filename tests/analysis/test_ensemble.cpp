@@ -144,7 +144,8 @@ TEST(Ensemble, ProfileAverageWeighsParticlesNotRealisations) {
     s.info.dim = 2;
     auto ring = [&](int n, double R, double v) {
       for (int i = 0; i < n; ++i) {
-        const Eigen::Vector3d u(std::cos(6.283185307179586 * i / n), std::sin(6.283185307179586 * i / n), 0);
+        const Eigen::Vector3d u(std::cos(6.283185307179586 * i / n),
+                                std::sin(6.283185307179586 * i / n), 0);
         s.position.push_back(R * u);
         s.velocity.push_back(v * u);
         s.active.push_back(1);

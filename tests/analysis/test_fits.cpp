@@ -219,7 +219,8 @@ TEST(Collapse, QualityOfSampledHistograms) {
     for (double time : {25000.0, 37500.0, 50000.0}) {
       std::vector<double> v(20000);
       for (auto& x : v) x = std::pow(time, alpha - 1) * -std::log(1 - r.uniform());
-      const Histogram h = make_histogram(v, {.bins = 40, .lo = 0, .hi = 4 * std::pow(time, alpha - 1)});
+      const Histogram h =
+          make_histogram(v, {.bins = 40, .lo = 0, .hi = 4 * std::pow(time, alpha - 1)});
       c.push_back(curve_of(scaled_speed_distribution(h, time, trial)));
     }
     return collapse_quality(c);
@@ -230,7 +231,7 @@ TEST(Collapse, QualityOfSampledHistograms) {
   // curves sees 2/3, against a signal variance of exp(-x) on [0, 4] of 0.065: Q ~ 1.2e-3.
   // Unscaled, the curves are shifted by up to 2^(2/3) = 1.6 in v: a difference of order the
   // signal itself near v = 0, where the curves differ most.
-  EXPECT_LT(right, 5e-3);  // four times the estimate 1.2e-3 below
+  EXPECT_LT(right, 5e-3);       // four times the estimate 1.2e-3 below
   EXPECT_GT(unscaled, 1.2e-2);  // ten times that estimate: clearly more than noise
 }
 

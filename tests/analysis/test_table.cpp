@@ -33,8 +33,16 @@ TEST(Table, CsvRoundTripIsExact) {
     any.push_back(x);
     physical.push_back(std::exp(20 * rng.normal()) * (i % 2 ? -1 : 1));
   }
-  special = {0.0, -0.0, 1.0, 12.0, 0.1, 1e300, 5e-324, std::numeric_limits<double>::infinity(),
-             -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  special = {0.0,
+             -0.0,
+             1.0,
+             12.0,
+             0.1,
+             1e300,
+             5e-324,
+             std::numeric_limits<double>::infinity(),
+             -std::numeric_limits<double>::infinity(),
+             std::numeric_limits<double>::quiet_NaN()};
   special.resize(any.size(), 2.5);
   t.add_column("t", any);
   t.add_column("energy", physical);
@@ -51,7 +59,8 @@ TEST(Table, CsvRoundTripIsExact) {
       if (std::isnan(a))
         EXPECT_TRUE(std::isnan(b));
       else  // bit for bit: -0.0 stays -0.0
-        EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b)) << j << " " << i;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b))
+            << j << " " << i;
     }
   EXPECT_EQ(to_csv(back), to_csv(t));
 }

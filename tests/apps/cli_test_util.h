@@ -2,12 +2,12 @@
 // Running the grainshock binary from tests: exit code, stderr lines, scratch folders.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace gs::test {
 

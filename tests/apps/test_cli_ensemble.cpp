@@ -32,7 +32,8 @@ void expect_same_files(const fs::path& a, const fs::path& b) {
 
 TEST(CliEnsemble, ThreadCountDoesNotChangeTheBytes) {
   const auto one = scratch_dir("k1"), two = scratch_dir("k2"), other = scratch_dir("seed2");
-  auto r = grainshock("ensemble " + kPhysics + " --realisations 4 --threads 1 --out " + one.string());
+  auto r =
+      grainshock("ensemble " + kPhysics + " --realisations 4 --threads 1 --out " + one.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = grainshock("ensemble " + kPhysics + " --realisations 4 --threads 2 --out " + two.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -48,13 +49,16 @@ TEST(CliEnsemble, ThreadCountDoesNotChangeTheBytes) {
 TEST(CliEnsemble, MergeOfSplitJobsEqualsTheOneShotEnsemble) {
   const auto whole = scratch_dir("whole"), a = scratch_dir("a"), b = scratch_dir("b"),
              merged = scratch_dir("merged");
-  ASSERT_EQ(grainshock("ensemble " + kPhysics + " --realisations 5 --threads 2 --out " +
-                       whole.string()).exit_code, 0);
-  auto r = grainshock("ensemble " + kPhysics + " --realisations 2 --threads 1 --per-realisation --out " +
-                      a.string());
+  ASSERT_EQ(
+      grainshock("ensemble " + kPhysics + " --realisations 5 --threads 2 --out " + whole.string())
+          .exit_code,
+      0);
+  auto r = grainshock("ensemble " + kPhysics +
+                      " --realisations 2 --threads 1 --per-realisation --out " + a.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = grainshock("ensemble " + kPhysics +
-                 " --realisation 2 --realisations 3 --threads 2 --per-realisation --out " + b.string());
+                 " --realisation 2 --realisations 3 --threads 2 --per-realisation --out " +
+                 b.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Folders in either order.
   r = grainshock("merge --quiet " + b.string() + " " + a.string() + " --out " + merged.string());
@@ -68,7 +72,8 @@ TEST(CliEnsemble, MergeOfSplitJobsEqualsTheOneShotEnsemble) {
 
 TEST(CliEnsemble, DistributionsAreNormalisedAndSummaryHasTheFits) {
   const auto dir = scratch_dir("norm");
-  auto r = grainshock("ensemble " + kPhysics + " --realisations 3 --threads 2 --out " + dir.string());
+  auto r =
+      grainshock("ensemble " + kPhysics + " --realisations 3 --threads 2 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table d = read_csv(dir / "distributions_mean.csv");
   const Table s = read_csv(dir / "snapshot_scalars_mean.csv");
@@ -116,21 +121,26 @@ TEST(CliEnsemble, BadInputIsRefusedInOneLineAndWritesNothing) {
   expect_refused("ensemble " + kPhysics + " --realisations 0" + to, out, "");
   expect_refused("ensemble " + kPhysics + " --realisations -2" + to, out, "");
   expect_refused("ensemble " + kPhysics + " --threads 0" + to, out, "");
-  expect_refused("ensemble " + kPhysics + " --window 2000,5000" + to, out, "");   // beyond t-max
-  expect_refused("ensemble " + kPhysics + " --window 0.001,100" + to, out, "");   // before the grid
-  expect_refused("ensemble " + kPhysics + " --window 800,400" + to, out, "");     // reversed
+  expect_refused("ensemble " + kPhysics + " --window 2000,5000" + to, out, "");  // beyond t-max
+  expect_refused("ensemble " + kPhysics + " --window 0.001,100" + to, out, "");  // before the grid
+  expect_refused("ensemble " + kPhysics + " --window 800,400" + to, out, "");    // reversed
 
   // Merging folders of different physics.
   const auto a = scratch_dir("a"), b = scratch_dir("b"), c = scratch_dir("c");
-  ASSERT_EQ(grainshock("ensemble " + kPhysics + " --realisations 2 --per-realisation --out " +
-                       a.string()).exit_code, 0);
+  ASSERT_EQ(
+      grainshock("ensemble " + kPhysics + " --realisations 2 --per-realisation --out " + a.string())
+          .exit_code,
+      0);
   ASSERT_EQ(grainshock("ensemble --particles 6000 --restitution 0.8 --t-max 1500 --quiet "
-                       "--realisation 2 --realisations 2 --per-realisation --out " + b.string())
-                .exit_code, 0);
+                       "--realisation 2 --realisations 2 --per-realisation --out " +
+                       b.string())
+                .exit_code,
+            0);
   expect_refused("merge " + a.string() + " " + b.string() + to, out, "");
   // The same realisations twice, and a folder without per-realisation data.
   expect_refused("merge " + a.string() + " " + a.string() + to, out, "");
-  ASSERT_EQ(grainshock("ensemble " + kPhysics + " --realisations 2 --out " + c.string()).exit_code, 0);
+  ASSERT_EQ(grainshock("ensemble " + kPhysics + " --realisations 2 --out " + c.string()).exit_code,
+            0);
   expect_refused("merge " + c.string() + to, out, "");
 
   // An existing output folder is left alone.

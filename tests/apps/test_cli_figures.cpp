@@ -36,8 +36,8 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     EXPECT_NE(gp.find(b + ".csv"), std::string::npos) << b;
     EXPECT_NE(gp.find(b + ".png"), std::string::npos) << b;
   }
-  for (const char* c : {"d2_r0.1", "d2_r0.5", "d2_r0.8", "d2_r1", "d3_r0.1", "d3_r0.5", "d3_r0.8",
-                        "d3_r1"})
+  for (const char* c :
+       {"d2_r0.1", "d2_r0.5", "d2_r0.8", "d2_r1", "d3_r0.1", "d3_r0.5", "d3_r0.8", "d3_r1"})
     EXPECT_TRUE(fs::exists(dir / "ensembles" / c / "timeseries_mean.csv")) << c;
 
   const std::string summary = read_file(dir / "summary.json");
@@ -45,8 +45,8 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
                           "\"theory\"", "\"agrees\"", "\"wall_seconds\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "phi2", "band packing (typical)",
-                        "band packing (upper, 90% quantile)", "A(t_max)"})
+  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "phi2",
+                        "band packing (typical)", "band packing (upper, 90% quantile)", "A(t_max)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   const std::string report = read_file(dir / "report.md");
   for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions"})

@@ -25,8 +25,9 @@ TEST(CliRun, WritesTheRunFolder) {
                         "snapshots/t_200.xyz", "snapshots/t_300.xyz"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string csv = read_file(dir / "timeseries.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "t,t_paper,active,energy,radius_rms,speed_rms,anisotropy,collisions,events,overlaps,px,py");
+  EXPECT_EQ(
+      csv.substr(0, csv.find('\n')),
+      "t,t_paper,active,energy,radius_rms,speed_rms,anisotropy,collisions,events,overlaps,px,py");
   const std::string summary = read_file(dir / "summary.json");
   for (const char* key : {"\"version\"", "\"seed\"", "\"setup_seconds\"", "\"run_seconds\"",
                           "\"events\"", "\"collisions\"", "\"overlaps\""})
@@ -41,11 +42,12 @@ TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
   const auto dir = scratch_dir("png");
   const auto r = grainshock("run " + kSmall +
                             " --snapshot-times 100,200 --png --compare-elastic --width 640 "
-                            "--height 360 --out " + dir.string());
+                            "--height 360 --out " +
+                            dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"frames/t_100.png", "frames/t_200.png", "frames/t_300.png",
-                        "frames/overlay.png", "frames/elastic_t_150.png",
-                        "snapshots/elastic_t_150.xyz"}) {
+  for (const char* f :
+       {"frames/t_100.png", "frames/t_200.png", "frames/t_300.png", "frames/overlay.png",
+        "frames/elastic_t_150.png", "snapshots/elastic_t_150.xyz"}) {
     ASSERT_TRUE(fs::exists(dir / f)) << f;
     if (fs::path(f).extension() != ".png") continue;
     const render::Image img = render::read_png((dir / f).string());
@@ -78,7 +80,8 @@ TEST(CliRun, SameConfigAndSeedGiveIdenticalBytes) {
 TEST(CliRun, ThermalRunsReportPressure) {
   const auto dir = scratch_dir("thermal");
   ASSERT_EQ(grainshock("run --initial thermal --dim 3 --particles 2000 --t-max 5 --restitution 1 "
-                       "--quiet --out " + dir.string())
+                       "--quiet --out " +
+                       dir.string())
                 .exit_code,
             0);
   const std::string csv = read_file(dir / "timeseries.csv");

@@ -70,7 +70,8 @@ Decoded decode_movie(const std::filesystem::path& path, int keep) {
       sws_scale(sws, frame->data, frame->linesize, 0, frame->height, dst, stride);
       sws_freeContext(sws);
     }
-    out.centre_luma.push_back(frame->data[0][(frame->height / 2) * frame->linesize[0] + frame->width / 2]);
+    out.centre_luma.push_back(
+        frame->data[0][(frame->height / 2) * frame->linesize[0] + frame->width / 2]);
     ++out.frames;
   };
   auto drain = [&] {

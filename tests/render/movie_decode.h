@@ -19,9 +19,9 @@ struct Decoded {
   AVCodecID codec = AV_CODEC_ID_NONE;
   int width = 0, height = 0;
   AVRational avg_frame_rate{0, 1}, r_frame_rate{0, 1};
-  double duration = 0;          // seconds, as a player shows it
-  std::int64_t nb_frames = 0;   // as the container says
-  int frames = 0;               // as decoded
+  double duration = 0;         // seconds, as a player shows it
+  std::int64_t nb_frames = 0;  // as the container says
+  int frames = 0;              // as decoded
   AVColorRange range = AVCOL_RANGE_UNSPECIFIED;
   AVColorSpace space = AVCOL_SPC_UNSPECIFIED;
   AVColorPrimaries primaries = AVCOL_PRI_UNSPECIFIED;

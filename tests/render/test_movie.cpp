@@ -18,9 +18,9 @@ extern "C" {
 }
 
 #include "render/movie_writer.h"
-#include "tests/render/movie_decode.h"
 #include "sim/error.h"
 #include "sim/stop.h"
+#include "tests/render/movie_decode.h"
 
 extern char** environ;
 
@@ -147,7 +147,8 @@ TEST(MovieWriter, FaststartPutsTheIndexFirst) {
   unsigned char head[8];
   long pos = 0;
   while (std::fseek(f, pos, SEEK_SET) == 0 && std::fread(head, 1, 8, f) == 8) {
-    const long size = (long(head[0]) << 24) | (long(head[1]) << 16) | (long(head[2]) << 8) | head[3];
+    const long size =
+        (long(head[0]) << 24) | (long(head[1]) << 16) | (long(head[2]) << 8) | head[3];
     boxes.emplace_back(reinterpret_cast<char*>(head + 4), 4);
     if (size < 8) break;
     pos += size;

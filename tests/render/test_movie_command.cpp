@@ -33,7 +33,9 @@ fs::path fresh_dir(const std::string& name) {
 
 using Result = test::CommandResult;
 
-Result movie(const std::string& args) { return test::grainshock("movie " + args); }
+Result movie(const std::string& args) {
+  return test::grainshock("movie " + args);
+}
 
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> out;
@@ -54,9 +56,10 @@ constexpr const char* kSmallRun = "--particles 3000 --seed 7 --quiet";
 
 TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
   const auto dir = fresh_dir("basic");
-  const Result r = movie(std::string(kSmallRun) +
-                             " --t-max 200 --frames 24 --fps 12 --width 320 --height 240 --keep-frames --out " +
-                             dir.string());
+  const Result r =
+      movie(std::string(kSmallRun) +
+            " --t-max 200 --frames 24 --fps 12 --width 320 --height 240 --keep-frames --out " +
+            dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "run.toml"}));
   EXPECT_EQ(names_in(dir / "frames").size(), 24u);
@@ -81,8 +84,9 @@ TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
 TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
   const auto lin = fresh_dir("lin");
   ASSERT_EQ(movie(std::string(kSmallRun) +
-                      " --t-max 100 --frames 4 --frame-spacing lin --width 64 --height 48"
-                      " --keep-frames --out " + lin.string())
+                  " --t-max 100 --frames 4 --frame-spacing lin --width 64 --height 48"
+                  " --keep-frames --out " +
+                  lin.string())
                 .exit_code,
             0);
   const double want_lin[] = {25, 50, 75, 100};
@@ -91,8 +95,9 @@ TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
                 1e-9);
   const auto log = fresh_dir("log");
   ASSERT_EQ(movie(std::string(kSmallRun) +
-                      " --t-max 100 --frames 3 --frame-spacing log --t-start 1 --width 64"
-                      " --height 48 --keep-frames --out " + log.string())
+                  " --t-max 100 --frames 3 --frame-spacing log --t-start 1 --width 64"
+                  " --height 48 --keep-frames --out " +
+                  log.string())
                 .exit_code,
             0);
   const double want_log[] = {1, 10, 100};
@@ -104,8 +109,10 @@ TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
 
 TEST(MovieCommand, OddSizeMpeg4And3dSlab) {
   const auto odd = fresh_dir("odd_mpeg4");
-  const Result r = movie(std::string(kSmallRun) + " --t-max 200 --frames 6 --width 161 --height 91 --codec mpeg4"
-                                                  " --fps 25 --out " + odd.string());
+  const Result r = movie(std::string(kSmallRun) +
+                         " --t-max 200 --frames 6 --width 161 --height 91 --codec mpeg4"
+                         " --fps 25 --out " +
+                         odd.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Decoded d = decode_movie(odd / "movie.mp4");
   EXPECT_EQ(d.codec, AV_CODEC_ID_MPEG4);
@@ -114,8 +121,10 @@ TEST(MovieCommand, OddSizeMpeg4And3dSlab) {
   EXPECT_EQ(d.frames, 6);
 
   const auto three = fresh_dir("3d");
-  const Result r3 = movie("--dim 3 --particles 3000 --t-max 60 --quiet --frames 5 --slab 6"
-                          " --width 160 --height 120 --out " + three.string());
+  const Result r3 = movie(
+      "--dim 3 --particles 3000 --t-max 60 --quiet --frames 5 --slab 6"
+      " --width 160 --height 120 --out " +
+      three.string());
   ASSERT_EQ(r3.exit_code, 0) << r3.err;
   EXPECT_EQ(decode_movie(three / "movie.mp4").frames, 5);
 }
@@ -139,7 +148,7 @@ TEST(MovieCommand, BadInputIsOneLineNonZeroAndNoMovie) {
     const auto dir = fresh_dir("bad" + std::to_string(i++));
     const std::string frames = args.find("--frames") == std::string::npos ? " --frames 5" : "";
     const Result r = movie(std::string(kSmallRun) + " --t-max 100" + frames + " " + args +
-                               " --out " + dir.string());
+                           " --out " + dir.string());
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find("error"), std::string::npos) << args << ": " << r.err;
@@ -155,10 +164,28 @@ TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   const auto dir = fresh_dir("sigterm");
   // A fixed camera and colour range need no first pass, so frames flow from the start; the run
   // is far longer than the test waits.
-  std::vector<std::string> args = {GRAINSHOCK_BINARY, "movie", "--particles", "3000", "--t-max",
-                                   "100000", "--frames", "20000", "--frame-spacing", "lin",
-                                   "--camera", "fixed", "--range", "0.001", "1", "--width", "160",
-                                   "--height", "120", "--keep-frames", "--quiet", "--out",
+  std::vector<std::string> args = {GRAINSHOCK_BINARY,
+                                   "movie",
+                                   "--particles",
+                                   "3000",
+                                   "--t-max",
+                                   "100000",
+                                   "--frames",
+                                   "20000",
+                                   "--frame-spacing",
+                                   "lin",
+                                   "--camera",
+                                   "fixed",
+                                   "--range",
+                                   "0.001",
+                                   "1",
+                                   "--width",
+                                   "160",
+                                   "--height",
+                                   "120",
+                                   "--keep-frames",
+                                   "--quiet",
+                                   "--out",
                                    dir.string()};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -166,7 +193,8 @@ TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   pid_t pid = -1;
   ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(dir / "frames" / "frame_00010.png") && std::chrono::steady_clock::now() < deadline)
+  while (!fs::exists(dir / "frames" / "frame_00010.png") &&
+         std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ASSERT_EQ(kill(pid, SIGTERM), 0);
   int status = 0;

@@ -37,9 +37,9 @@ TEST(CollisionRule, ObliqueKeepsTangentAndMomentum) {
       EXPECT_EQ(res.impulse, 0);
       continue;
     }
-    EXPECT_LT((v1 + v2 - p0).norm(), 1e-15 * (1 + p0.norm()));          // momentum exact
-    EXPECT_NEAR((g1 - n.dot(g1) * n - t0).norm(), 0.0, 1e-14);          // tangent unchanged
-    const double expected = w0 >= 1e-4 ? -r * w0 : -w0;                 // normal part scaled
+    EXPECT_LT((v1 + v2 - p0).norm(), 1e-15 * (1 + p0.norm()));  // momentum exact
+    EXPECT_NEAR((g1 - n.dot(g1) * n - t0).norm(), 0.0, 1e-14);  // tangent unchanged
+    const double expected = w0 >= 1e-4 ? -r * w0 : -w0;         // normal part scaled
     EXPECT_NEAR(n.dot(g1), expected, 1e-14);
   }
 }

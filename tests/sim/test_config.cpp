@@ -16,7 +16,7 @@ TEST(Config, BoxSideFollowsDensity) {
   EXPECT_NEAR(c.box(), 1000.0, 1e-9);  // the paper's 2D box: (2.5e5 / 0.25)^(1/2)
   c.dim = 3;
   c.particles = 2000000;
-  EXPECT_NEAR(c.box(), 200.0, 1e-9);   // the paper's 3D box
+  EXPECT_NEAR(c.box(), 200.0, 1e-9);  // the paper's 3D box
   EXPECT_NEAR(c.paper_time(10.0), 10.0 * std::cbrt(0.25), 1e-12);
 }
 

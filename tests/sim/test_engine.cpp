@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "sim/engine.h"
-#include "tests/sim/thermal_config.h"
 #include "sim/error.h"
 #include "sim/initial.h"
+#include "tests/sim/thermal_config.h"
 
 namespace gs {
 namespace {
@@ -42,8 +42,12 @@ void expect_conservation(const PhysicsConfig& c, double t_end, int samples, bool
   expect_conservation(*make_simulation(c), t_end, samples, elastic);
 }
 
-TEST(Engine, ElasticThermalGasConserves2D) { expect_conservation(thermal(2, 2000, 1.0), 20, 10, true); }
-TEST(Engine, ElasticThermalGasConserves3D) { expect_conservation(thermal(3, 2000, 1.0), 20, 10, true); }
+TEST(Engine, ElasticThermalGasConserves2D) {
+  expect_conservation(thermal(2, 2000, 1.0), 20, 10, true);
+}
+TEST(Engine, ElasticThermalGasConserves3D) {
+  expect_conservation(thermal(3, 2000, 1.0), 20, 10, true);
+}
 
 TEST(Engine, DenseElasticGasStaysApart3D) {
   // Packing 0.5, beyond random sequential addition: a lattice start that melts.
@@ -140,8 +144,8 @@ TEST(Engine, ParticlesAtRestHaveNoEvents) {
   auto large = make_simulation(c);
   small->run_until(3000);
   large->run_until(3000);
-  const double ratio = static_cast<double>(large->stats().events) /
-                       static_cast<double>(small->stats().events);
+  const double ratio =
+      static_cast<double>(large->stats().events) / static_cast<double>(small->stats().events);
   // Different random packings give different histories; a cost that grew with N would give 16.
   EXPECT_GT(ratio, 0.5);
   EXPECT_LT(ratio, 2.0);

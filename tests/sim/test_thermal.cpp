@@ -5,9 +5,9 @@
 #include <numbers>
 
 #include "sim/engine.h"
-#include "tests/sim/thermal_config.h"
 #include "sim/initial.h"
 #include "sim/recorder.h"
+#include "tests/sim/thermal_config.h"
 
 namespace gs {
 namespace {
@@ -15,7 +15,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Packing fraction of unit-diameter discs or spheres at number density n.
-double packing(int dim, double n) { return dim == 2 ? kPi * n / 4 : kPi * n / 6; }
+double packing(int dim, double n) {
+  return dim == 2 ? kPi * n / 4 : kPi * n / 6;
+}
 
 // Contact value of the pair correlation from the equation of state: Henderson (Mol. Phys. 30,
 // 971, 1975) in 2D, Carnahan-Starling (J. Chem. Phys. 51, 635, 1969) in 3D.
@@ -67,8 +69,12 @@ void check_equation_of_state(int dim) {
       << "rate = " << col("collision_rate");
 }
 
-TEST(Thermal, HendersonEquationOfState2D) { check_equation_of_state(2); }
-TEST(Thermal, CarnahanStarlingEquationOfState3D) { check_equation_of_state(3); }
+TEST(Thermal, HendersonEquationOfState2D) {
+  check_equation_of_state(2);
+}
+TEST(Thermal, CarnahanStarlingEquationOfState3D) {
+  check_equation_of_state(3);
+}
 
 // Haff's law: dT/dt = -(1 - r^2) omega_E(T) T / d, with omega_E ~ sqrt(T), integrates to
 // T(t) = T0 / (1 + t / tau)^2 with 1 / tau = (1 - r^2) omega_E(T0) / (2 d). The loss per
@@ -91,8 +97,8 @@ TEST(Thermal, HaffLawWithEnskogTime) {
   }
   Engine<dim> sim(c, std::move(init));
   const double t0_temp = 2 * sim.sample().energy / (dim * c.particles);
-  const double tau = 2.0 * dim / ((1 - c.restitution * c.restitution) *
-                                  enskog_rate(dim, c.density, t0_temp));
+  const double tau =
+      2.0 * dim / ((1 - c.restitution * c.restitution) * enskog_rate(dim, c.density, t0_temp));
   // Fit 1/sqrt(T) = (1 + t / tau) / sqrt(T0) by least squares up to t = tau (T falls fourfold,
   // well before the shearing instability of a box of side 25 sets in for r = 0.9).
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
