@@ -279,13 +279,23 @@ void add_run_command(CLI::App& app) {
   sub->add_option("--height", opt->height, "Height of the pictures in pixels")
       ->capture_default_str();
   sub->footer(
-      "With no flags at all, runs the paper's Fig. 1 job: 2.5e5 discs, r = 0.1, snapshots and "
-      "pictures at paper times 5000, 10000, 20000, 50000, their overlay, the elastic "
-      "comparison and a movie of the front, into grainshock-run/.");
+      "With no flags but --out, --force and --quiet, runs the paper's Fig. 1 job: 2.5e5 discs, "
+      "r = 0.1, snapshots and pictures at paper times 5000, 10000, 20000, 50000, their overlay, "
+      "the elastic comparison and a movie of the front.");
   sub->callback([opt, sub] {
+    // Where the results go and how loud the run is do not change what is run.
     bool any_flag = false;
-    for (const CLI::Option* option : sub->get_options()) any_flag |= option->count() > 0;
-    if (!any_flag) *opt = demo_options();
+    for (const CLI::Option* option : sub->get_options())
+      if (option->get_name() != "--out" && option->get_name() != "--force" &&
+          option->get_name() != "--quiet")
+        any_flag |= option->count() > 0;
+    if (!any_flag) {
+      RunOptions demo = demo_options();
+      demo.out = opt->out;
+      demo.force = opt->force;
+      demo.quiet = opt->quiet;
+      *opt = demo;
+    }
     const int rc = run(*opt);
     if (rc != 0) std::exit(rc);
   });

@@ -62,6 +62,23 @@ TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
   EXPECT_EQ(elastic.info.restitution.value_or(-1), 1.0);
 }
 
+// README's first command: `grainshock run` with nothing but where to write runs the paper's
+// Fig. 1 job (2.5e5 discs, r = 0.1; tens of seconds).
+TEST(CliRun, NoPhysicsFlagsRunTheFig1Job) {
+  const auto dir = scratch_dir("fig1");
+  const auto r = grainshock("run --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Paper times 5000, 10000, 20000, 50000 are simulation times 10000 ... 100000 at n = 0.25.
+  for (const char* f : {"frames/t_10000.png", "frames/t_20000.png", "frames/t_40000.png",
+                        "frames/t_100000.png", "frames/overlay.png", "frames/elastic_t_50000.png",
+                        "snapshots/t_100000.xyz", "movie.mp4", "timeseries.csv"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const Snapshot s = read_xyz((dir / "snapshots/t_100000.xyz").string());
+  EXPECT_EQ(s.size(), 250000u);
+  EXPECT_EQ(s.info.restitution.value_or(-1), 0.1);
+  EXPECT_EQ(render::read_png((dir / "frames/overlay.png").string()).width, 1920);
+}
+
 TEST(CliRun, SameConfigAndSeedGiveIdenticalBytes) {
   const auto a = scratch_dir("a"), b = scratch_dir("b"), c = scratch_dir("c");
   ASSERT_EQ(grainshock("run " + kSmall + " --seed 7 --out " + a.string()).exit_code, 0);
