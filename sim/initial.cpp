@@ -7,47 +7,64 @@
 
 #include "sim/cell_grid.h"
 #include "sim/error.h"
+#include "sim/huge_pages.h"
 
 namespace gs {
 
 template <int D>
 VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
   const CellGrid<D> grid(box);
-  std::vector<std::int32_t> head(grid.cell_count(), -1), next(static_cast<std::size_t>(n), -1);
-  VecArray<D> pos;
-  pos.reserve(static_cast<std::size_t>(n));
+  // A placed sphere: its centre and the next sphere of its cell, in one cache line.
+  struct Placed {
+    Vec<D> x;
+    std::int32_t next;
+  };
+  HugeVector<std::int32_t> head(grid.cell_count(), -1);
+  HugeVector<Placed> placed;
+  placed.reserve(static_cast<std::size_t>(n));
+  // A trial costs two dependent cache misses (its cells' heads, then their occupants).
+  // Trials are drawn kAhead steps before they are tested, in the same order, so the heads of a
+  // trial are prefetched kAhead steps early and its occupants kAhead / 2 steps early: the misses
+  // of many trials overlap, and the placement is that of drawing and testing one at a time.
+  constexpr int kAhead = 8;
+  struct Trial {
+    Vec<D> x;
+    std::int32_t cell[27];
+    int cells = 0;
+  };
+  Trial ring[kAhead];
+  auto draw = [&](Trial& t) {
+    for (int k = 0; k < D; ++k) t.x[k] = rng.uniform() * box;
+    t.cells = 0;
+    grid.for_each_neighbour(grid.coords_of(t.x), [&](std::int32_t c) { t.cell[t.cells++] = c; });
+    for (int k = 0; k < t.cells; ++k) __builtin_prefetch(&head[t.cell[k]]);
+  };
+  for (auto& t : ring) draw(t);
   // Near the jamming limit the acceptance rate collapses; give up long before that becomes a hang.
   const std::int64_t max_trials = 1000 * n + 1000000;
-  std::int64_t trials = 0;
-  while (static_cast<std::int64_t>(pos.size()) < n) {
-    if (++trials > max_trials)
+  for (std::int64_t trial = 0; static_cast<std::int64_t>(placed.size()) < n; ++trial) {
+    if (trial >= max_trials)
       throw UserError("--density: random sequential addition could not place particle " +
-                      std::to_string(pos.size() + 1) + " of " + std::to_string(n) +
+                      std::to_string(placed.size() + 1) + " of " + std::to_string(n) +
                       "; the box is too full");
-    Vec<D> x;
-    for (int k = 0; k < D; ++k) x[k] = rng.uniform() * box;
-    const IVec<D> c = grid.coords_of(x);
-    // Fetch the first occupant of every cell before testing any, so that the cache misses of
-    // this random walk through memory overlap (as in the engine's neighbour search).
-    std::int32_t first[27];
-    int count = 0;
-    grid.for_each_neighbour(c, [&](std::int32_t cell) {
-      const std::int32_t h = head[cell];
-      if (h < 0) return;
-      __builtin_prefetch(&pos[h]);
-      first[count++] = h;
-    });
+    const Trial& soon = ring[(trial + kAhead / 2) % kAhead];
+    for (int k = 0; k < soon.cells; ++k)
+      if (const std::int32_t h = head[soon.cell[k]]; h >= 0) __builtin_prefetch(&placed[h]);
+    Trial& t = ring[trial % kAhead];
+    const Vec<D> x = t.x;
     bool free = true;
-    for (int k = 0; k < count && free; ++k)
-      for (std::int32_t j = first[k]; free && j >= 0; j = next[j])
-        if (grid.minimum_image(pos[j] - x).squaredNorm() < 1.0) free = false;
-    if (!free) continue;
-    const auto id = static_cast<std::int32_t>(pos.size());
-    const std::int32_t cell = grid.index(c);
-    next[id] = head[cell];
-    head[cell] = id;
-    pos.push_back(x);
+    for (int k = 0; k < t.cells && free; ++k)
+      for (std::int32_t j = head[t.cell[k]]; free && j >= 0; j = placed[j].next)
+        if (grid.minimum_image(placed[j].x - x).squaredNorm() < 1.0) free = false;
+    if (free) {
+      const std::int32_t cell = grid.index(grid.coords_of(x));
+      placed.push_back({x, head[cell]});
+      head[cell] = static_cast<std::int32_t>(placed.size() - 1);
+    }
+    draw(t);  // the trial kAhead steps on takes this slot
   }
+  VecArray<D> pos(placed.size());
+  for (std::size_t i = 0; i < placed.size(); ++i) pos[i] = placed[i].x;
   return pos;
 }
 

@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "sim/huge_pages.h"
+
 namespace gs {
 
 template <int D>
@@ -11,8 +13,9 @@ using Vec = Eigen::Matrix<double, D, 1>;
 template <int D>
 using IVec = Eigen::Matrix<int, D, 1>;
 
-// std::vector of fixed-size Eigen types: with D = 2 or 4 doubles Eigen wants aligned storage.
+// std::vector of fixed-size Eigen types (with D = 2 or 4 doubles Eigen wants aligned storage,
+// which the huge-page allocator gives).
 template <int D>
-using VecArray = std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>>;
+using VecArray = HugeVector<Vec<D>>;
 
 }  // namespace gs
