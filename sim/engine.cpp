@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 #include "sim/collision.h"
@@ -75,10 +76,12 @@ void Engine<D>::sort_by_cell(InitialState<D>& init) {
   tag_.resize(n);
   for (std::size_t i = 0; i < n; ++i) tag_[i] = static_cast<std::int32_t>(i);
   if constexpr (D > 1) {
-    std::vector<std::uint64_t> key(n);
-    for (std::size_t i = 0; i < n; ++i) key[i] = morton<D>(grid_.coords_of(init.position[i]));
-    std::stable_sort(tag_.begin(), tag_.end(),
-                     [&](std::int32_t a, std::int32_t b) { return key[a] < key[b]; });
+    // Sorting (key, index) pairs keeps ties in index order and reads memory in sequence.
+    std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
+    for (std::size_t i = 0; i < n; ++i)
+      order[i] = {morton<D>(grid_.coords_of(init.position[i])), static_cast<std::int32_t>(i)};
+    std::sort(order.begin(), order.end());
+    for (std::size_t i = 0; i < n; ++i) tag_[i] = order[i].second;
     VecArray<D> pos(n), vel(n);
     for (std::size_t i = 0; i < n; ++i) {
       pos[i] = init.position[tag_[i]];

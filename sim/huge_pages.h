@@ -1,10 +1,11 @@
 #pragma once
-// Large per-particle and per-cell arrays are read at random (a trial position, a neighbour
-// search), and with 4 KiB pages most such reads also miss the TLB: a 2e6-sphere box spans tens
-// of thousands of pages. This allocator gives blocks of 2 MiB or more 2 MiB alignment and marks
-// them MADV_HUGEPAGE before they are first touched, so that Linux with transparent huge pages in
-// "madvise" mode (Debian's default) backs them with huge pages. Elsewhere it is a plain aligned
-// allocation.
+// Random sequential addition reads its cell grid and placed centres at random, and with 4 KiB
+// pages most of those reads also miss the TLB (a 2e6-sphere box spans ~25000 pages). This
+// allocator gives blocks of 2 MiB or more 2 MiB alignment and marks them MADV_HUGEPAGE before
+// they are first touched, so that Linux with transparent huge pages in "madvise" mode (Debian's
+// default) backs them with huge pages; elsewhere it is a plain aligned allocation. Measured on
+// 2e6 spheres: 1.44 s -> 0.83 s. The engine's arrays gained ~1% of run time and lost more in
+// set-up (zeroing whole huge pages), so they stay on ordinary pages.
 #include <sys/mman.h>
 
 #include <cstddef>

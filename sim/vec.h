@@ -3,8 +3,6 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "sim/huge_pages.h"
-
 namespace gs {
 
 template <int D>
@@ -13,9 +11,8 @@ using Vec = Eigen::Matrix<double, D, 1>;
 template <int D>
 using IVec = Eigen::Matrix<int, D, 1>;
 
-// std::vector of fixed-size Eigen types (with D = 2 or 4 doubles Eigen wants aligned storage,
-// which the huge-page allocator gives).
+// std::vector of fixed-size Eigen types: with D = 2 or 4 doubles Eigen wants aligned storage.
 template <int D>
-using VecArray = HugeVector<Vec<D>>;
+using VecArray = std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>>;
 
 }  // namespace gs
