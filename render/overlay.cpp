@@ -137,6 +137,11 @@ int OverlayPainter::legend_width(int width, int height,
   return u + w + font_.ascent() + u;
 }
 
+int OverlayPainter::legend_height(int width, int height, std::size_t entries) {
+  const int u = unit(width, height);
+  return u + (font_.ascent() + font_.descent() + u / 4) * static_cast<int>(entries) + u / 3 + u / 2;
+}
+
 void OverlayPainter::legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
                             const OverlayColours& c) {
   const int u = unit(img.width, img.height);

@@ -43,6 +43,7 @@ class OverlayPainter {
   void legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
               const OverlayColours& c);
   int legend_width(int width, int height, const std::vector<std::pair<Rgb8, std::string>>& entries);
+  int legend_height(int width, int height, std::size_t entries);
   // A bar of a round length in particle diameters, bottom left.
   void scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c);
 

@@ -475,14 +475,24 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   for (std::size_t k = 0; overlay && k < snaps.size(); ++k)
     legend.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
   // A framed (not explicitly centred) scene keeps clear of the colour bar or legend on the
-  // right: it is fitted into the rest of the width.
-  int reserve = 0;
+  // right: it is fitted into the rest of the width. A 2D legend goes above the scene instead
+  // when that leaves more room (square or tall pictures, a legend too wide to sit beside it).
+  int reserve = 0, reserve_top = 0;
   if (!view.centre) {
+    auto painter = [&]() -> OverlayPainter& { return m.overlay_painter(style.font); };
     if (style.colorbar && !overlay)
-      reserve = m.overlay_painter(style.font)
-                    .colorbar_width(view.width, view.height, m.info.range, style.scale, bar_label);
+      reserve =
+          painter().colorbar_width(view.width, view.height, m.info.range, style.scale, bar_label);
     else if (style.legend && overlay)
-      reserve = m.overlay_painter(style.font).legend_width(view.width, view.height, legend);
+      reserve = painter().legend_width(view.width, view.height, legend);
+    if (style.legend && overlay && !three_d) {
+      const int top = painter().legend_height(view.width, view.height, legend.size());
+      if (top < view.height / 2 &&
+          std::min(view.width, view.height - top) > std::min(view.width - reserve, view.height)) {
+        reserve = 0;
+        reserve_top = top;
+      }
+    }
     if (reserve >= view.width / 2) reserve = 0;
   }
 
@@ -542,6 +552,15 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
       cam.width = view.width;
       cam.half_w = view.width / (2 * ppu);
       cam.origin.x() += reserve / (2 * ppu);
+    }
+    if (reserve_top > 0) {
+      View low = view;
+      low.height -= reserve_top;
+      cam = make_camera_2d(fit, r_max, low);
+      const double ppu = cam.pixels_per_unit();
+      cam.height = view.height;
+      cam.half_h = view.height / (2 * ppu);
+      cam.origin.y() += reserve_top / (2 * ppu);  // world y points up the picture
     }
   }
   m.info.camera = cam;
