@@ -1,124 +1,221 @@
 #pragma once
-// Priority queue of the next event of each moving particle: an indexed 4-ary min-heap with one
-// slot per particle, so that rescheduling a particle is a key update in place (no stale entries,
-// no growth). Particles at rest are simply absent. The four children of a node share one cache
-// line, which halves the misses of a binary heap when the queue outgrows the cache. Storage is
-// sized once for all particles; the hot loop never allocates.
+// Priority queue of the next event of each moving particle: a calendar queue (R. Brown, Commun.
+// ACM 31, 1220 (1988); for event-driven MD, G. Paul, J. Comput. Phys. 221, 615 (2007)) with one
+// entry per particle, so that rescheduling is an unlink and a link (no stale entries, no
+// growth). Particles at rest are simply absent.
+//
+// Time is cut into buckets of width w; a "year" of nb consecutive buckets holds the events due
+// in it, one doubly linked list per bucket, and later events wait in an overflow list that is
+// sorted into the next year when this one is used up. Finding the earliest event walks to the
+// first non-empty bucket and scans its short list. The cost is O(1) per event while a bucket
+// holds a few events, so w follows the spacing of the earliest events (a kicked gas goes from
+// one event per unit time to hundreds of thousands and back as the band slows) and nb follows
+// the number of events: the occupancy near the front of the calendar is checked every ~size/4
+// events, and the calendar is rebuilt when it is off. All storage is sized once for all
+// particles; the hot loop never allocates.
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
-#include <new>
 #include <vector>
 
 #include "sim/error.h"
 
 namespace gs {
 
-template <class T, std::size_t Align>
-struct AlignedAllocator {
-  using value_type = T;
-  template <class U>
-  struct rebind {
-    using other = AlignedAllocator<U, Align>;
-  };
-  AlignedAllocator() = default;
-  template <class U>
-  AlignedAllocator(const AlignedAllocator<U, Align>&) {}
-  T* allocate(std::size_t n) {
-    return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{Align}));
-  }
-  void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{Align}); }
-  template <class U>
-  bool operator==(const AlignedAllocator<U, Align>&) const {
-    return true;
-  }
-};
-
 class EventQueue {
  public:
-  explicit EventQueue(std::size_t n) : where_(n, kAbsent) { storage_.resize(n + kPad); }
+  explicit EventQueue(std::size_t n) : entry_(n) {
+    all_.reserve(n);
+    times_.reserve(n);
+    head_.reserve(std::bit_ceil(std::max(2 * n, kMinBuckets)));
+    rebuild(kMinBuckets);
+  }
 
   bool empty() const { return size_ == 0; }
-  std::size_t size() const { return static_cast<std::size_t>(size_); }
-  std::int32_t top() const { return heap(0).id; }
-  double top_time() const { return heap(0).time; }
-  bool contains(std::int32_t id) const { return where_[id] != kAbsent; }
+  std::size_t size() const { return size_; }
+  bool contains(std::int32_t id) const { return entry_[id].bucket != kAbsent; }
+
+  // The particle with the earliest event (ties in no particular but a reproducible order).
+  // The queue must not be empty.
+  std::int32_t top() {
+    find_top();
+    return top_;
+  }
+  double top_time() {
+    find_top();
+    return entry_[top_].time;
+  }
 
   // Inserts particle `id` with event time `t`, or moves it to `t` if already present.
   void set(std::int32_t id, double t) {
-    std::int32_t k = where_[id];
-    if (k == kAbsent) {
-      k = size_++;
-      heap(k) = {t, id};
-      where_[id] = k;
-      sift_up(k);
-    } else if (t < heap(k).time) {
-      heap(k).time = t;
-      sift_up(k);
-    } else {
-      heap(k).time = t;
-      sift_down(k);
+    if (contains(id))
+      unlink(id);
+    else
+      ++size_;
+    entry_[id].time = t;
+    link(id);
+    if (top_ == id) {
+      if (t > top_known_time_)
+        top_ = kNone;  // it may have fallen behind another
+      else
+        top_known_time_ = t;
+    } else if (top_ != kNone && t < top_known_time_) {
+      top_ = id;
+      top_known_time_ = t;
     }
   }
 
   void remove(std::int32_t id) {
-    const std::int32_t k = where_[id];
-    if (k == kAbsent) return;
-    where_[id] = kAbsent;
-    const Node last = heap(--size_);
-    if (k == size_) return;
-    heap(k) = last;
-    where_[last.id] = k;
-    sift_up(k);
-    sift_down(where_[last.id]);
+    if (!contains(id)) return;
+    unlink(id);
+    --size_;
+    if (top_ == id) top_ = kNone;
   }
 
  private:
-  static constexpr std::int32_t kAbsent = -1;
-  struct alignas(16) Node {
-    double time;
-    std::int32_t id;
+  static constexpr std::int32_t kAbsent = -1, kNone = -1;
+  static constexpr std::int64_t kOverflow = -2;  // bucket of the entries beyond this year
+  static constexpr std::size_t kMinBuckets = 64;
+  static constexpr int kLongList = 64;  // entries: a bucket this full, or a sample this large
+
+  struct Entry {
+    double time = 0;
+    std::int64_t bucket = kAbsent;  // absolute bucket number, kOverflow, or kAbsent
+    std::int32_t next = kNone, prev = kNone;
   };
-  // Node k lives at storage_[k + kPad]: the children 4k+1..4k+4 then start on a multiple of 4,
-  // i.e. on a 64-byte boundary.
-  static constexpr std::int32_t kPad = 3;
 
-  Node& heap(std::int32_t k) { return storage_[static_cast<std::size_t>(k + kPad)]; }
-  const Node& heap(std::int32_t k) const { return storage_[static_cast<std::size_t>(k + kPad)]; }
-
-  void sift_up(std::int32_t k) {
-    const Node x = heap(k);
-    while (k > 0) {
-      const std::int32_t p = (k - 1) / 4;
-      if (!(x.time < heap(p).time)) break;
-      heap(k) = heap(p);
-      where_[heap(k).id] = k;
-      k = p;
-    }
-    heap(k) = x;
-    where_[x.id] = k;
+  std::int64_t bucket_of(double t) const {
+    // Events are never due before the bucket being walked (times only move forward), except in
+    // direct use of the queue; those join the current bucket, where the scan still finds them.
+    const double b = std::floor(t * inv_width_);
+    return std::max(cur_, b < 9e18 ? static_cast<std::int64_t>(b) : year_end_);
+  }
+  std::int32_t& head_of(std::int64_t bucket) {
+    return bucket == kOverflow ? overflow_ : head_[static_cast<std::size_t>(bucket) & mask_];
   }
 
-  void sift_down(std::int32_t k) {
-    const Node x = heap(k);
-    for (;;) {
-      const std::int32_t first = 4 * k + 1;
-      if (first >= size_) break;
-      const std::int32_t last = std::min(first + 4, size_);
-      std::int32_t c = first;
-      for (std::int32_t m = first + 1; m < last; ++m)
-        if (heap(m).time < heap(c).time) c = m;
-      if (!(heap(c).time < x.time)) break;
-      heap(k) = heap(c);
-      where_[heap(k).id] = k;
-      k = c;
-    }
-    heap(k) = x;
-    where_[x.id] = k;
+  void link(std::int32_t id) {
+    Entry& e = entry_[id];
+    const std::int64_t b = bucket_of(e.time);
+    e.bucket = b < year_end_ ? b : kOverflow;
+    (e.bucket == kOverflow ? overflow_count_ : calendar_count_)++;
+    std::int32_t& head = head_of(e.bucket);
+    e.prev = kNone;
+    e.next = head;
+    if (head != kNone) entry_[head].prev = id;
+    head = id;
   }
 
-  std::vector<Node, AlignedAllocator<Node, 64>> storage_;
-  std::int32_t size_ = 0;
-  std::vector<std::int32_t> where_;  // heap slot of each particle, or kAbsent
+  void unlink(std::int32_t id) {
+    Entry& e = entry_[id];
+    (e.bucket == kOverflow ? overflow_count_ : calendar_count_)--;
+    if (e.prev != kNone)
+      entry_[e.prev].next = e.next;
+    else
+      head_of(e.bucket) = e.next;
+    if (e.next != kNone) entry_[e.next].prev = e.prev;
+    e.bucket = kAbsent;
+  }
+
+  void find_top() {
+    if (top_ != kNone) return;
+    GS_CHECK_MSG(size_ > 0, "top of an empty event queue");
+    if (++finds_ >= next_check_) check();
+    while (calendar_count_ == 0) next_year();
+    while (head_[static_cast<std::size_t>(cur_) & mask_] == kNone) ++cur_;
+    std::int32_t best = head_[static_cast<std::size_t>(cur_) & mask_];
+    int scanned = 1;
+    for (std::int32_t j = entry_[best].next; j != kNone; j = entry_[j].next, ++scanned)
+      if (entry_[j].time < entry_[best].time) best = j;
+    top_ = best;
+    top_known_time_ = entry_[best].time;
+    if (scanned > kLongList) next_check_ = std::min(next_check_, finds_ + kLongList);
+  }
+
+  // This year's buckets are all empty: start the next year at the earliest waiting event and
+  // sort into it what falls due in it.
+  void next_year() {
+    double earliest = INFINITY;
+    for (std::int32_t j = overflow_; j != kNone; j = entry_[j].next)
+      earliest = std::min(earliest, entry_[j].time);
+    cur_ = std::max(cur_, static_cast<std::int64_t>(std::floor(earliest * inv_width_)));
+    year_end_ = cur_ + static_cast<std::int64_t>(mask_ + 1);
+    std::int32_t j = overflow_;
+    overflow_ = kNone;
+    overflow_count_ = 0;
+    while (j != kNone) {
+      const std::int32_t next = entry_[j].next;
+      link(j);
+      j = next;
+    }
+  }
+
+  // Rebuilds the calendar when the number of buckets no longer suits the number of events, when
+  // most events wait beyond this year, or when the buckets about to be walked hold far more or
+  // far fewer than a few events each.
+  void check() {
+    next_check_ = finds_ + std::max<std::size_t>(size_ / 4, 64);
+    const std::size_t buckets = std::bit_ceil(std::max(2 * size_, kMinBuckets));
+    bool rebuild_now = buckets > 2 * (mask_ + 1) || 4 * buckets < mask_ + 1 ||
+                       4 * calendar_count_ < overflow_count_;
+    if (!rebuild_now && calendar_count_ > 0) {
+      std::size_t seen = 0;
+      std::int64_t b = cur_;
+      for (; b < year_end_ && seen < kLongList; ++b)
+        for (std::int32_t j = head_[static_cast<std::size_t>(b) & mask_]; j != kNone;
+             j = entry_[j].next)
+          ++seen;
+      const double per_bucket = static_cast<double>(seen) / static_cast<double>(b - cur_);
+      rebuild_now = per_bucket > 8 || per_bucket < 0.25;
+    }
+    if (rebuild_now) rebuild(buckets);
+  }
+
+  // Sorts every entry into a new calendar of `buckets` buckets whose width puts about one of
+  // the earliest events in each; a width that cannot be measured (ties) is kept.
+  void rebuild(std::size_t buckets) {
+    all_.clear();
+    for (std::int32_t h : head_)
+      for (std::int32_t j = h; j != kNone; j = entry_[j].next) all_.push_back(j);
+    for (std::int32_t j = overflow_; j != kNone; j = entry_[j].next) all_.push_back(j);
+    times_.clear();
+    for (std::int32_t j : all_) times_.push_back(entry_[j].time);
+    double earliest = 0;
+    if (!times_.empty()) {
+      const std::size_t m = std::min<std::size_t>(times_.size() - 1, kLongList);
+      std::nth_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(m),
+                       times_.end());
+      earliest =
+          *std::min_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(m) + 1);
+      const double width = m > 0 ? (times_[m] - earliest) / static_cast<double>(m) : 0;
+      // Bucket numbers must stay exact integers in a double.
+      if (width > 1e-12 * std::max(1.0, std::abs(earliest))) width_ = width;
+    }
+    inv_width_ = 1.0 / width_;
+    head_.assign(buckets, kNone);
+    mask_ = buckets - 1;
+    overflow_ = kNone;
+    calendar_count_ = overflow_count_ = 0;
+    cur_ = static_cast<std::int64_t>(std::floor(earliest * inv_width_));
+    year_end_ = cur_ + static_cast<std::int64_t>(buckets);
+    for (std::int32_t j : all_) link(j);
+    top_ = kNone;
+  }
+
+  std::vector<Entry> entry_;
+  std::vector<std::int32_t> head_;
+  std::int32_t overflow_ = kNone;
+  std::size_t mask_ = 0;
+  double width_ = 1, inv_width_ = 1;  // 1: a start for gases with unit speeds and spacings
+  std::int64_t cur_ = 0;              // the bucket being walked
+  std::int64_t year_end_ = 0;         // first bucket beyond this year
+  std::size_t size_ = 0, calendar_count_ = 0, overflow_count_ = 0;
+  std::int32_t top_ = kNone;   // cached earliest entry, or kNone
+  double top_known_time_ = 0;  // its time
+  std::size_t finds_ = 0, next_check_ = 0;
+  std::vector<std::int32_t> all_;  // scratch of rebuild
+  std::vector<double> times_;      // scratch of rebuild
 };
 
 }  // namespace gs

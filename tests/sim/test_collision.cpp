@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "sim/collision.h"
@@ -93,6 +96,51 @@ TEST(EventQueue, PopsInTimeOrderUnderUpdates) {
     q.remove(q.top());
   }
   EXPECT_TRUE(q.empty());
+}
+
+// The queue as the engine drives it, against an ordered set: the earliest event is taken and
+// rescheduled later, others are rescheduled or dropped, new ones arrive. Event spacings sweep
+// six decades while the population grows to 4000 and shrinks again, and one event in twenty is
+// far in the future, so the calendar must re-choose its width and size and carry events over
+// years; every top must still be the true earliest.
+TEST(EventQueue, FollowsEventRatesOverSixDecades) {
+  Rng rng(5, 0, Stream::Positions);
+  const int n = 4000, steps = 300000;
+  EventQueue q(n);
+  std::set<std::pair<double, int>> ref;
+  std::vector<double> key(n, -1);
+  auto put = [&](int i, double t) {
+    if (key[i] >= 0) ref.erase({key[i], i});
+    ref.insert({key[i] = t, i});
+    q.set(i, t);
+  };
+  auto drop = [&](int i) {
+    if (key[i] < 0) return;
+    ref.erase({key[i], i});
+    key[i] = -1;
+    q.remove(i);
+  };
+  int born = 0;
+  put(born++, 0.5);
+  for (int k = 0; k < steps; ++k) {
+    ASSERT_EQ(q.size(), ref.size());
+    ASSERT_EQ(q.top_time(), ref.begin()->first) << "step " << k;
+    ASSERT_EQ(q.top(), ref.begin()->second) << "step " << k;
+    const double now = ref.begin()->first;
+    const double spacing = 1e-3 * std::pow(1e6, static_cast<double>(k) / steps);
+    auto later = [&] {
+      const double t = -std::log(1 - rng.uniform()) * spacing * q.size();
+      return now + (rng.uniform() < 0.05 ? 1e4 * t : t);
+    };
+    put(ref.begin()->second, later());
+    const bool growing = k < steps / 2;
+    if (growing && born < n) put(born++, later());
+    const int other = static_cast<int>(rng.below(static_cast<std::uint64_t>(born)));
+    if (!growing && ref.size() > 1 && rng.uniform() < 0.02)
+      drop(other);
+    else if (key[other] >= 0)
+      put(other, later());
+  }
 }
 
 }  // namespace
