@@ -745,7 +745,7 @@ void add_figures_command(CLI::App& app) {
   auto* sub =
       app.add_subcommand("figures", "Reproduce the paper's Figs. 1-5 and a report with numbers");
   sub->add_flag("--quick", opt->quick,
-                "Smaller systems, fewer realisations: about 10 minutes on 2 cores (default)");
+                "Smaller systems, fewer realisations: about 2 minutes on 2 cores (default)");
   sub->add_flag("--full", opt->full,
                 "The paper's sizes: 2.5e5 discs, 2e6 spheres, 100 realisations");
   sub->add_flag("--tiny", opt->tiny,
