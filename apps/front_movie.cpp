@@ -247,13 +247,17 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
 
   std::vector<FrameScan> scans;
   std::vector<Shot> shots;
+  Snapshot snap;  // reused frame after frame
   bool stopped = false;
   if (!style.range || follow) {
     auto sim = make_simulation(physics);
     Progress progress(o.quiet);
     scans.reserve(times.size());
-    stopped = !for_each_frame(*sim, times, progress, "pass 1 of 2 (range, camera)",
-                              [&](std::size_t) { scans.push_back(scan(sim->snapshot(), style)); });
+    stopped =
+        !for_each_frame(*sim, times, progress, "pass 1 of 2 (range, camera)", [&](std::size_t) {
+          sim->snapshot(snap);
+          scans.push_back(scan(snap, style));
+        });
     progress.done();
     if (!stopped) {
       if (!style.range) style.range = fixed_range(scans, style.scale);
@@ -272,7 +276,7 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
                               shots.empty() ? "movie" : "pass 2 of 2 (movie)", [&](std::size_t k) {
                                 sim_s += seconds_since(clock);
                                 auto t0 = std::chrono::steady_clock::now();
-                                const Snapshot snap = sim->snapshot();
+                                sim->snapshot(snap);
                                 if (follow) aim(view, shots[k], snap, scans[k]);
                                 render::Image img = renderer.render(snap, style, view);
                                 render_s += seconds_since(t0);

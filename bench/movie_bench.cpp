@@ -156,12 +156,13 @@ std::vector<Figure> pipeline(int w, int h, const std::string& target) {
   const auto start = Clock::now();
   {
     render::MovieWriter movie(path, o);
+    Snapshot snap;
     for (int k = 1; k <= frames; ++k) {
       auto t0 = Clock::now();
       sim->run_until(7000 + 2000.0 * k / frames);
       simulate += since(t0);
       t0 = Clock::now();
-      const Snapshot snap = sim->snapshot();
+      sim->snapshot(snap);
       copy += since(t0);
       t0 = Clock::now();
       render::Image img = renderer.render(snap, style, view);

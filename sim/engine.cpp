@@ -2,8 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <utility>
 #include <cmath>
+#include <utility>
 
 #include "sim/collision.h"
 #include "sim/error.h"
@@ -378,8 +378,8 @@ Sample Engine<D>::sample() const {
 }
 
 template <int D>
-Snapshot Engine<D>::snapshot() const {
-  Snapshot s;
+void Engine<D>::snapshot(Snapshot& s) const {
+  s.info = {};
   s.info.dim = D;
   s.info.box = grid_.box();
   s.info.time = now_;
@@ -404,7 +404,6 @@ Snapshot Engine<D>::snapshot() const {
     s.active[t] = active_[i];
     s.first_collision[t] = first_collision_[i];
   }
-  return s;
 }
 
 template <int D>

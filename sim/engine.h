@@ -62,7 +62,14 @@ class Simulation {
   virtual EventKind step() = 0;
   virtual double time() const = 0;
   virtual Sample sample() const = 0;
-  virtual Snapshot snapshot() const = 0;
+  // The state now, into `out`, reusing its storage: frame loops take one every frame, and a
+  // fresh 2.5e5-particle snapshot costs its page faults every time.
+  virtual void snapshot(Snapshot& out) const = 0;
+  Snapshot snapshot() const {
+    Snapshot s;
+    snapshot(s);
+    return s;
+  }
   virtual const EngineStats& stats() const = 0;
   // Deepest overlap (1 - distance) of any pair now, by a scan of all cells; 0 if none.
   virtual double max_overlap_now() const = 0;
@@ -81,7 +88,8 @@ class Engine final : public Simulation {
   EventKind step() override;
   double time() const override { return now_; }
   Sample sample() const override;
-  Snapshot snapshot() const override;
+  void snapshot(Snapshot& s) const override;
+  using Simulation::snapshot;
   const EngineStats& stats() const override { return stats_; }
   double max_overlap_now() const override;
 
