@@ -19,16 +19,13 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   sort_by_cell(init);
   kin_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
+  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], 0};
   cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
   head_.assign(grid_.cell_count(), -1);
+  next_.assign(n, -1);
   prev_.assign(n, -1);
-  coll_time_.assign(n, kNever);
-  coll_partner_.assign(n, -1);
-  coll_counter_.assign(n, 0);
-  cross_time_.assign(n, kNever);
-  cross_dir_.assign(n, 0);
+  pred_.assign(n, Prediction{});
   active_.assign(n, 0);
   moving_.assign(n, 0);
   first_collision_.assign(n, -1.0);
@@ -94,7 +91,7 @@ void Engine<D>::sort_by_cell(InitialState<D>& init) {
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  kin_[i].next = head_[cell];
+  next_[i] = head_[cell];
   prev_[i] = -1;
   if (head_[cell] >= 0) prev_[head_[cell]] = i;
   head_[cell] = i;
@@ -102,9 +99,9 @@ void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
 
 template <int D>
 void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
-  const std::int32_t next = kin_[i].next;
+  const std::int32_t next = next_[i];
   if (prev_[i] >= 0)
-    kin_[prev_[i]].next = next;
+    next_[prev_[i]] = next;
   else
     head_[cell] = next;
   if (next >= 0) prev_[next] = prev_[i];
@@ -147,31 +144,59 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 }
 
 // Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
-// first particle of every cell is fetched before any is examined, so that their cache misses
-// overlap instead of queueing behind each other (the search is bound by memory latency).
+// search is bound by memory latency, so it goes in passes: walk the cell lists (compact, mostly
+// in cache) and prefetch every particle met, so that their cache misses overlap instead of
+// queueing behind each other; gather separations and relative velocities into small arrays;
+// compute contact times without a branch per pair (half the pairs move apart, at random, and a
+// branch on that costs more in mispredictions than the square roots it saves).
 template <int D>
 template <class ForEachCell>
 void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
-  std::int32_t first[27];
+  constexpr int kBatch = 64;
+  std::int32_t who[kBatch];
+  alignas(64) double dr[D][kBatch], dv[D][kBatch], dt[kBatch];
   int count = 0;
-  for_each_cell([&](std::int32_t cell) {
-    const std::int32_t h = head_[cell];
-    if (h < 0) return;
-    __builtin_prefetch(&kin_[h]);
-    first[count++] = h;
-  });
+  double best = pred_[i].coll_time;
   const Vec<D> vi = kin_[i].v;
-  for (int c = 0; c < count; ++c) {
-    for (std::int32_t j = first[c]; j >= 0; j = kin_[j].next) {
-      if (j == i) continue;
-      const double dt = contact_time<D>(separation(xi, j), kin_[j].v - vi);
-      if (now_ + dt < coll_time_[i]) {
-        coll_time_[i] = now_ + dt;
-        coll_partner_[i] = j;
-        coll_counter_[i] = kin_[j].counter;
+  const auto evaluate = [&] {
+    for (int m = 0; m < count; ++m) {
+      const Kinematics& k = kin_[who[m]];
+      const Vec<D> r = grid_.minimum_image(k.x + k.v * (now_ - k.t) - xi), v = k.v - vi;
+      for (int a = 0; a < D; ++a) {
+        dr[a][m] = r[a];
+        dv[a][m] = v[a];
       }
     }
-  }
+    for (int m = 0; m < count; ++m) {
+      double b = 0, r2 = 0, a = 0;
+      for (int k = 0; k < D; ++k) {
+        b += dr[k][m] * dv[k][m];
+        r2 += dr[k][m] * dr[k][m];
+        a += dv[k][m] * dv[k][m];
+      }
+      // contact_time() without branches; with c <= 0 the root is <= 0 and the max makes it 0.
+      const double c = r2 - 1.0, disc = b * b - a * c;
+      const double root = std::max(c / (std::sqrt(std::max(disc, 0.0)) - b), 0.0);
+      dt[m] = (b < 0) & (disc > 0) ? root : kNever;
+    }
+    for (int m = 0; m < count; ++m)
+      if (now_ + dt[m] < best) {
+        best = now_ + dt[m];
+        pred_[i].partner = who[m];
+        pred_[i].partner_counter = kin_[who[m]].counter;
+      }
+    count = 0;
+  };
+  for_each_cell([&](std::int32_t cell) {
+    for (std::int32_t j = head_[cell]; j >= 0; j = next_[j]) {
+      if (j == i) continue;
+      __builtin_prefetch(&kin_[j]);
+      who[count] = j;
+      if (++count == kBatch) evaluate();
+    }
+  });
+  evaluate();
+  pred_[i].coll_time = best;
 }
 
 template <int D>
@@ -189,13 +214,13 @@ void Engine<D>::predict_crossing(std::int32_t i, const Vec<D>& xi) {
       dir = static_cast<std::int8_t>(2 * k + (v > 0 ? 1 : 0));
     }
   }
-  cross_time_[i] = now_ + best;
-  cross_dir_[i] = dir;
+  pred_[i].cross_time = now_ + best;
+  pred_[i].cross_dir = dir;
 }
 
 template <int D>
 void Engine<D>::schedule(std::int32_t i) {
-  const double t = std::min(coll_time_[i], cross_time_[i]);
+  const double t = std::min(pred_[i].coll_time, pred_[i].cross_time);
   if (t == kNever)
     queue_.remove(i);
   else
@@ -207,8 +232,8 @@ void Engine<D>::schedule(std::int32_t i) {
 template <int D>
 void Engine<D>::predict(std::int32_t i) {
   const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
-  coll_time_[i] = kNever;
-  coll_partner_[i] = -1;
+  pred_[i].coll_time = kNever;
+  pred_[i].partner = -1;
   scan_cells(i, xi, [&](auto&& f) { grid_.for_each_neighbour(cell_[i], f); });
   predict_crossing(i, xi);
   schedule(i);
@@ -234,12 +259,12 @@ template <int D>
 EventKind Engine<D>::process_next() {
   const std::int32_t i = queue_.top();
   ++stats_.events;
-  if (cross_time_[i] <= coll_time_[i]) {
+  if (pred_[i].cross_time <= pred_[i].coll_time) {
     cross_cell(i);
     return EventKind::Crossing;
   }
-  const std::int32_t j = coll_partner_[i];
-  if (kin_[j].counter != coll_counter_[i]) {  // the partner has changed course since
+  const std::int32_t j = pred_[i].partner;
+  if (kin_[j].counter != pred_[i].partner_counter) {  // the partner has changed course since
     ++stats_.stale;
     predict(i);
     return EventKind::Stale;
@@ -312,8 +337,8 @@ template <int D>
 void Engine<D>::cross_cell(std::int32_t i) {
   ++stats_.crossings;
   advance(i);
-  const int k = cross_dir_[i] >> 1;
-  const int step = (cross_dir_[i] & 1) ? 1 : -1;
+  const int k = pred_[i].cross_dir >> 1;
+  const int step = (pred_[i].cross_dir & 1) ? 1 : -1;
   cell_remove(i, grid_.index(cell_[i]));
   int c = cell_[i][k] + step;
   if (c == grid_.per_side()) {
@@ -330,8 +355,8 @@ void Engine<D>::cross_cell(std::int32_t i) {
 
   // The best collision among the old neighbours is still the best unless its partner moved on;
   // then only the layer of cells that has just come into reach needs a look.
-  const std::int32_t p = coll_partner_[i];
-  if (p < 0 || kin_[p].counter != coll_counter_[i]) {
+  const std::int32_t p = pred_[i].partner;
+  if (p < 0 || kin_[p].counter != pred_[i].partner_counter) {
     predict(i);
     return;
   }
@@ -413,7 +438,7 @@ double Engine<D>::max_overlap_now() const {
   for (std::int32_t i = 0; i < n; ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next)
+      for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });
   }

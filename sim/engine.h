@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sim/cell_grid.h"
+#include "sim/collision.h"
 #include "sim/config.h"
 #include "sim/event_queue.h"
 #include "sim/initial.h"
@@ -129,7 +130,6 @@ class Engine final : public Simulation {
     Vec<D> x;
     double t;
     Vec<D> v;
-    std::int32_t next;      // next particle in the same cell, or -1
     std::uint32_t counter;  // bumped at every velocity change
   };
   std::vector<Kinematics> kin_;
@@ -137,15 +137,20 @@ class Engine final : public Simulation {
   std::vector<IVec<D>> cell_;
   std::vector<IVec<D>> image_;
 
-  // Cells as intrusive doubly linked lists (next is in Kinematics).
-  std::vector<std::int32_t> head_, prev_;
+  // Cells as doubly linked lists. The links are apart from Kinematics so that a search can walk
+  // every list of its cells in a compact array first, then fetch all the particles at once.
+  std::vector<std::int32_t> head_, next_, prev_;
 
-  // The next event of each particle: best collision and next crossing.
-  std::vector<double> coll_time_;
-  std::vector<std::int32_t> coll_partner_;
-  std::vector<std::uint32_t> coll_counter_;  // partner's counter when predicted
-  std::vector<double> cross_time_;
-  std::vector<std::int8_t> cross_dir_;  // 2 * dimension + (1 if upwards)
+  // The next event of each particle: best collision and next crossing, in one half cache line
+  // because every event reads all of it.
+  struct alignas(32) Prediction {
+    double coll_time = kNever;
+    double cross_time = kNever;
+    std::int32_t partner = -1;
+    std::uint32_t partner_counter = 0;  // the partner's counter when predicted
+    std::int8_t cross_dir = 0;          // 2 * dimension + (1 if upwards)
+  };
+  std::vector<Prediction> pred_;
   EventQueue queue_;
 
   std::vector<std::uint8_t> active_, moving_;
