@@ -147,8 +147,7 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 // search is bound by memory latency, so it goes in passes: walk the cell lists (compact, mostly
 // in cache) and prefetch every particle met, so that their cache misses overlap instead of
 // queueing behind each other; gather separations and relative velocities into small arrays;
-// compute contact times without a branch per pair (half the pairs move apart, at random, and a
-// branch on that costs more in mispredictions than the square roots it saves).
+// compute contact times in a loop the compiler vectorises.
 template <int D>
 template <class ForEachCell>
 void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
@@ -160,8 +159,7 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
   const Vec<D> vi = kin_[i].v;
   const auto evaluate = [&] {
     for (int m = 0; m < count; ++m) {
-      const Kinematics& k = kin_[who[m]];
-      const Vec<D> r = grid_.minimum_image(k.x + k.v * (now_ - k.t) - xi), v = k.v - vi;
+      const Vec<D> r = separation(xi, who[m]), v = kin_[who[m]].v - vi;
       for (int a = 0; a < D; ++a) {
         dr[a][m] = r[a];
         dv[a][m] = v[a];
@@ -174,10 +172,7 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
         r2 += dr[k][m] * dr[k][m];
         a += dv[k][m] * dv[k][m];
       }
-      // contact_time() without branches; with c <= 0 the root is <= 0 and the max makes it 0.
-      const double c = r2 - 1.0, disc = b * b - a * c;
-      const double root = std::max(c / (std::sqrt(std::max(disc, 0.0)) - b), 0.0);
-      dt[m] = (b < 0) & (disc > 0) ? root : kNever;
+      dt[m] = contact_time(b, r2, a);
     }
     for (int m = 0; m < count; ++m)
       if (now_ + dt[m] < best) {
