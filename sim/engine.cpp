@@ -19,11 +19,10 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   sort_by_cell(init);
   kin_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], 0};
+  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
   cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
   head_.assign(grid_.cell_count(), -1);
-  next_.assign(n, -1);
   prev_.assign(n, -1);
   pred_.assign(n, Prediction{});
   active_.assign(n, 0);
@@ -91,7 +90,7 @@ void Engine<D>::sort_by_cell(InitialState<D>& init) {
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  next_[i] = head_[cell];
+  kin_[i].next = head_[cell];
   prev_[i] = -1;
   if (head_[cell] >= 0) prev_[head_[cell]] = i;
   head_[cell] = i;
@@ -99,9 +98,9 @@ void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
 
 template <int D>
 void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
-  const std::int32_t next = next_[i];
+  const std::int32_t next = kin_[i].next;
   if (prev_[i] >= 0)
-    next_[prev_[i]] = next;
+    kin_[prev_[i]].next = next;
   else
     head_[cell] = next;
   if (next >= 0) prev_[next] = prev_[i];
@@ -144,10 +143,10 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 }
 
 // Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
-// search is bound by memory latency, so it goes in passes: walk the cell lists (compact, mostly
-// in cache) and prefetch every particle met, so that their cache misses overlap instead of
-// queueing behind each other; gather separations and relative velocities into small arrays;
-// compute contact times in a loop the compiler vectorises.
+// search is bound by memory latency: the first particle of every cell is fetched before any is
+// read, so that their cache misses overlap instead of queueing behind each other; separations
+// and relative velocities are gathered into small arrays, and the contact times computed in a
+// loop the compiler vectorises.
 template <int D>
 template <class ForEachCell>
 void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
@@ -182,14 +181,20 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
       }
     count = 0;
   };
+  std::int32_t first[27];
+  int cells = 0;
   for_each_cell([&](std::int32_t cell) {
-    for (std::int32_t j = head_[cell]; j >= 0; j = next_[j]) {
+    const std::int32_t h = head_[cell];
+    if (h < 0) return;
+    __builtin_prefetch(&kin_[h]);
+    first[cells++] = h;
+  });
+  for (int c = 0; c < cells; ++c)
+    for (std::int32_t j = first[c]; j >= 0; j = kin_[j].next) {
       if (j == i) continue;
-      __builtin_prefetch(&kin_[j]);
       who[count] = j;
       if (++count == kBatch) evaluate();
     }
-  });
   evaluate();
   pred_[i].coll_time = best;
 }
@@ -433,7 +438,7 @@ double Engine<D>::max_overlap_now() const {
   for (std::int32_t i = 0; i < n; ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
+      for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next)
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });
   }
