@@ -113,6 +113,21 @@ Shape measure_shape(const Snapshot& s) {
   return sh;
 }
 
+Snapshot active_subset(const Snapshot& s) {
+  checked_dim(s);
+  Snapshot a;
+  a.info = s.info;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!is_active(s, i)) continue;
+    a.position.push_back(s.position[i]);
+    if (s.has_velocity()) a.velocity.push_back(s.velocity[i]);
+    if (!s.radius.empty()) a.radius.push_back(s.radius[i]);
+    if (!s.active.empty()) a.active.push_back(1);
+    if (!s.first_collision.empty()) a.first_collision.push_back(s.first_collision[i]);
+  }
+  return a;
+}
+
 std::vector<double> active_distances(const Snapshot& s, const Eigen::Vector3d& centre) {
   const int d = checked_dim(s);
   std::vector<double> r;

@@ -38,6 +38,12 @@ Shape measure_shape(const Snapshot& s);
 // distinct positions), where no shape exists.
 double anisotropy_index(int dim, const Eigen::Vector3d& eigenvalues);
 
+// The active particles of `s` alone, in their order, with s.info. Every measure but the band
+// packing looks at active particles only; at 2e6 spheres they are a few per cent of the snapshot,
+// scattered through it, and measuring them from this copy reads the big arrays once instead of
+// once per measure.
+Snapshot active_subset(const Snapshot& s);
+
 // Distances of active particles from `centre`, and their speeds, in particle order.
 std::vector<double> active_distances(const Snapshot& s, const Eigen::Vector3d& centre);
 std::vector<double> active_speeds(const Snapshot& s);  // UserError if s has no velocities

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -143,6 +144,31 @@ TEST(Observables, DistributionsAreNormalised) {
   EXPECT_NEAR(h.integral(), 0.75, 1e-15);
   EXPECT_THROW(make_histogram(x, {.bins = 0}), UserError);
   EXPECT_THROW(scaled_radial_distribution(h, 0.0, 0.5), UserError);
+}
+
+TEST(Observables, ActiveSubsetKeepsTheActiveParticlesAndTheirMeasures) {
+  Snapshot s = random_gas(3, 3000, 7);
+  s.first_collision.assign(s.size(), -1.0);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.active[i]) s.first_collision[i] = double(i);
+  const Snapshot a = active_subset(s);
+  ASSERT_EQ(a.size(), 2000u);  // random_gas leaves every third particle inactive
+  ASSERT_EQ(a.velocity.size(), a.size());
+  ASSERT_EQ(a.radius.size(), a.size());
+  ASSERT_EQ(a.first_collision.size(), a.size());
+  EXPECT_EQ(std::count(a.active.begin(), a.active.end(), 1), 2000);
+  // Particle order is kept: the k-th active particle of s is the k-th of the subset.
+  for (std::size_t i = 0, k = 0; i < s.size(); ++i) {
+    if (!s.active[i]) continue;
+    EXPECT_EQ(a.position[k], s.position[i]);
+    EXPECT_EQ(a.first_collision[k], double(i));
+    ++k;
+  }
+  // Same particles in the same order, so the measures agree bit for bit.
+  EXPECT_EQ(radial_distribution(a, {.bins = 40}).values,
+            radial_distribution(s, {.bins = 40}).values);
+  EXPECT_EQ(speed_distribution(a, {.bins = 40}).values, speed_distribution(s, {.bins = 40}).values);
+  EXPECT_EQ(measure_shape(a).gyration, measure_shape(s).gyration);
 }
 
 TEST(Observables, BandPackingOfSquareLattice) {
