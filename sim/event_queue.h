@@ -54,6 +54,7 @@ class EventQueue {
     else
       ++size_;
     entry_[id].time = t;
+    floor_ = std::min(floor_, t);
     link(id);
     if (top_ == id) {
       if (t > top_known_time_)
@@ -124,12 +125,15 @@ class EventQueue {
     if (++finds_ >= next_check_) check();
     while (calendar_count_ == 0) next_year();
     while (head_[static_cast<std::size_t>(cur_) & mask_] == kNone) ++cur_;
+    // The first entry due at the floor is the earliest (the same one a full scan would pick):
+    // a lattice start can put a whole bucket's worth of events at one instant.
     std::int32_t best = head_[static_cast<std::size_t>(cur_) & mask_];
     int scanned = 1;
-    for (std::int32_t j = entry_[best].next; j != kNone; j = entry_[j].next, ++scanned)
+    for (std::int32_t j = entry_[best].next; j != kNone && entry_[best].time > floor_;
+         j = entry_[j].next, ++scanned)
       if (entry_[j].time < entry_[best].time) best = j;
     top_ = best;
-    top_known_time_ = entry_[best].time;
+    top_known_time_ = floor_ = entry_[best].time;
     if (scanned > kLongList) next_check_ = std::min(next_check_, finds_ + kLongList);
   }
 
@@ -183,11 +187,15 @@ class EventQueue {
     for (std::int32_t j : all_) times_.push_back(entry_[j].time);
     double earliest = 0;
     if (!times_.empty()) {
-      const std::size_t m = std::min<std::size_t>(times_.size() - 1, kLongList);
-      std::nth_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(m),
-                       times_.end());
-      earliest =
-          *std::min_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(m) + 1);
+      // The m-th earliest event, with m grown past any events tied with the earliest.
+      const std::size_t last = times_.size() - 1;
+      std::size_t m = std::min<std::size_t>(last, kLongList);
+      for (;; m = std::min(last, 8 * m)) {
+        const auto nth = times_.begin() + static_cast<std::ptrdiff_t>(m);
+        std::nth_element(times_.begin(), nth, times_.end());
+        earliest = *std::min_element(times_.begin(), nth + 1);
+        if (m == last || times_[m] > earliest) break;
+      }
       const double width = m > 0 ? (times_[m] - earliest) / static_cast<double>(m) : 0;
       // Bucket numbers must stay exact integers in a double.
       if (width > 1e-12 * std::max(1.0, std::abs(earliest))) width_ = width;
@@ -213,6 +221,7 @@ class EventQueue {
   std::size_t size_ = 0, calendar_count_ = 0, overflow_count_ = 0;
   std::int32_t top_ = kNone;   // cached earliest entry, or kNone
   double top_known_time_ = 0;  // its time
+  double floor_ = INFINITY;    // no entry is due before this: the last top's time, or earlier
   std::size_t finds_ = 0, next_check_ = 0;
   std::vector<std::int32_t> all_;  // scratch of rebuild
   std::vector<double> times_;      // scratch of rebuild

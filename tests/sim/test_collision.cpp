@@ -143,5 +143,32 @@ TEST(EventQueue, FollowsEventRatesOverSixDecades) {
   }
 }
 
+// A lattice start can put thousands of events at one instant (every sphere on a cell wall): the
+// calendar must take them all at that instant, then find a width for the events after them,
+// and an entry set before the last top (direct use of the queue) must still come first.
+TEST(EventQueue, TiesAtOneInstantThenSpreadEvents) {
+  Rng rng(7, 0, Stream::Positions);
+  const int n = 4000;
+  EventQueue q(n);
+  std::set<std::pair<double, int>> ref;
+  std::vector<double> key(n);
+  auto put = [&](int i, double t) {
+    ref.erase({key[i], i});
+    ref.insert({key[i] = t, i});
+    q.set(i, t);
+  };
+  for (int i = 0; i < n; ++i) put(i, i < 3000 ? 0.0 : 1 + rng.uniform());
+  for (int k = 0; k < 20000; ++k) {
+    ASSERT_EQ(q.top_time(), ref.begin()->first) << "step " << k;
+    const auto [now, i] = *ref.begin();
+    ASSERT_EQ(key[q.top()], now) << "step " << k;
+    put(i, now + 1e-3 * rng.uniform());
+    if (k == 10000) {  // one entry before the last top, then one at it, in the same bucket
+      put((i + 1) % n, now / 2);
+      put((i + 2) % n, now);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gs
