@@ -92,7 +92,7 @@ void add_sim_cases(std::vector<Case>& cases) {
                    false, [] { return thermal3d(0.5); }});
   // The same gas small enough for the particle data to stay in a core's 2 MiB L2 cache: the
   // gap to N = 1e5 is the cost of cache misses in the neighbour search and the event queue.
-  cases.push_back({"sim/thermal3d_phi0.5_in_cache",
+  cases.push_back({"sim/in_cache_thermal3d_phi0.5",
                    "elastic 3D gas, N = 21^3 = 9261, packing 0.5 (lattice start)", false,
                    [] { return thermal3d(0.5, 9261); }});
   cases.push_back({"sim/kick2d_paper", "2D kick, N = 2.5e5, r = 0.8, to t = 87581", false,
