@@ -37,7 +37,9 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
     for (int k = 0; k < D; ++k) t.x[k] = rng.uniform() * box;
     t.cells = 0;
     grid.for_each_neighbour(grid.coords_of(t.x), [&](std::int32_t c) { t.cell[t.cells++] = c; });
-    for (int k = 0; k < t.cells; ++k) __builtin_prefetch(&head[t.cell[k]]);
+    // The cells come in rows of 3 along x, adjacent in memory: the ends of a row cover it.
+    for (int k = 0; k < t.cells; ++k)
+      if (k % 3 != 1) __builtin_prefetch(&head[t.cell[k]]);
   };
   for (auto& t : ring) draw(t);
   // Near the jamming limit the acceptance rate collapses; give up long before that becomes a hang.
@@ -65,11 +67,16 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
   }
   // Returned cell by cell, so that particles close in space are close in the array: the engine's
   // Morton ordering then moves each one only a little, and its snapshots, written in this order,
-  // fill memory nearly in sequence instead of at random.
+  // fill memory nearly in sequence instead of at random. The spheres themselves were stored in
+  // random order, so each is a cache miss: they are fetched a few cells ahead.
   VecArray<D> pos;
   pos.reserve(placed.size());
-  for (const std::int32_t h : head)
-    for (std::int32_t j = h; j >= 0; j = placed[j].next) pos.push_back(placed[j].x);
+  constexpr std::size_t kCellsAhead = 32;
+  for (std::size_t c = 0; c < head.size(); ++c) {
+    if (c + kCellsAhead < head.size())
+      if (const std::int32_t h = head[c + kCellsAhead]; h >= 0) __builtin_prefetch(&placed[h]);
+    for (std::int32_t j = head[c]; j >= 0; j = placed[j].next) pos.push_back(placed[j].x);
+  }
   return pos;
 }
 
