@@ -14,10 +14,11 @@ namespace gs::bench {
 namespace {
 
 // Collisions per CPU-second of an elastic thermal 3D gas in equilibrium. The start is not: at
-// packing 0.5 it is a simple cubic lattice squeezed to gaps of 0.003 diameters, which rattles
-// at ~470 collisions per particle per unit time until t ~ 0.15 and then melts; crossings per
-// collision level off (0.05 -> 0.117) only by t ~ 3, and a rate measured earlier flatters the
-// search. So the warm-up lasts 4 time units (sigma sqrt(m / T)) and 2 collisions per particle.
+// packing 0.5 and N = 1e5 it is a simple cubic lattice squeezed to gaps of 0.003 diameters,
+// which rattles at ~470 collisions per particle per unit time until t ~ 0.15 and then melts;
+// crossings per collision level off (0.05 -> 0.117) only by t ~ 3, and a rate measured earlier
+// flatters the search. So the warm-up lasts 4 time units (sigma sqrt(m / T)) and at least 2
+// collisions per particle.
 std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
   PhysicsConfig c;
   c.dim = 3;
