@@ -43,14 +43,14 @@ class CellGrid {
 
   // Nearest periodic image of a separation that is less than 1.5 box sides long.
   Vec<D> minimum_image(Vec<D> d) const {
-    const double half = 0.5 * box_;
-    for (int k = 0; k < D; ++k) {
-      if (d[k] > half)
-        d[k] -= box_;
-      else if (d[k] < -half)
-        d[k] += box_;
-    }
+    for (int k = 0; k < D; ++k) d[k] = minimum_image(d[k]);
     return d;
+  }
+  // The same along one axis. A select rather than branches, and on a plain double: the engine's
+  // neighbour search calls it for every component of every neighbour.
+  double minimum_image(double d) const {
+    const double half = 0.5 * box_, down = d - box_, up = d + box_;
+    return d > half ? down : (d < -half ? up : d);
   }
 
   // Calls f(cell index) for the 3^d cells around c (fewer, without repeats, on tiny grids).

@@ -157,11 +157,14 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
   double best = pred_[i].coll_time;
   const Vec<D> vi = kin_[i].v;
   const auto evaluate = [&] {
+    // Component by component on plain doubles: through Eigen temporaries the compiler keeps the
+    // separation on the stack and stalls on reading it back.
     for (int m = 0; m < count; ++m) {
-      const Vec<D> r = separation(xi, who[m]), v = kin_[who[m]].v - vi;
+      const Kinematics& k = kin_[who[m]];
+      const double since = now_ - k.t;
       for (int a = 0; a < D; ++a) {
-        dr[a][m] = r[a];
-        dv[a][m] = v[a];
+        dr[a][m] = grid_.minimum_image(k.x[a] + k.v[a] * since - xi[a]);
+        dv[a][m] = k.v[a] - vi[a];
       }
     }
     for (int m = 0; m < count; ++m) {
