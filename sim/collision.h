@@ -37,18 +37,26 @@ CollisionResult collide(Vec<D>& v1, Vec<D>& v2, const Vec<D>& n, double r, doubl
   return {impulse, inelastic};
 }
 
-// Time until two unit-diameter spheres touch, from b = dr.dv, r2 = |dr|^2 and a = |dv|^2 for
-// their separation dr = r2 - r1 and relative velocity dv = v2 - v1; kNever if they do not. An
-// approaching pair that already overlaps collides at once (0): round-off may push a pair a hair
-// inside contact, and it must never sink deeper. Branch-free, for the engine's batched search:
-// half the pairs move apart, at random, and a branch on that costs more in mispredictions than
-// the square roots it saves.
+// Contact of two unit-diameter spheres, from b = dr.dv, r2 = |dr|^2 and a = |dv|^2 for their
+// separation dr = r2 - r1 and relative velocity dv = v2 - v1: they touch in the future if they
+// approach (b < 0) and their paths come within one diameter (disc > 0), after contact_delay.
+// The engine's batched search tests every neighbour without branches (half the pairs move
+// apart, at random, and a branch on that costs more in mispredictions than the arithmetic),
+// then takes the square root and the division only for the few that pass.
+inline double contact_discriminant(double b, double r2, double a) { return b * b - a * (r2 - 1.0); }
+inline bool will_touch(double b, double disc) { return (b < 0) & (disc > 0); }
+
+// c / (-b + sqrt(disc)) is the smaller root without the cancellation of (-b - sqrt(disc)) / a.
+// An approaching pair that already overlaps (r2 <= 1) collides at once (0): round-off may push a
+// pair a hair inside contact, and it must never sink deeper.
+inline double contact_delay(double b, double r2, double disc) {
+  return std::max((r2 - 1.0) / (std::sqrt(disc) - b), 0.0);
+}
+
+// Time until the spheres touch; kNever if they do not.
 inline double contact_time(double b, double r2, double a) {
-  const double c = r2 - 1.0, disc = b * b - a * c;
-  // c / (-b + sqrt(disc)) is the smaller root without the cancellation of (-b - sqrt(disc)) / a;
-  // when the pair overlaps (c <= 0) it is <= 0 and the max makes it 0.
-  const double root = std::max(c / (std::sqrt(std::max(disc, 0.0)) - b), 0.0);
-  return (b < 0) & (disc > 0) ? root : kNever;
+  const double disc = contact_discriminant(b, r2, a);
+  return will_touch(b, disc) ? contact_delay(b, r2, disc) : kNever;
 }
 
 template <int D>

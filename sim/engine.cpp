@@ -152,7 +152,8 @@ template <class ForEachCell>
 void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
   constexpr int kBatch = 64;
   std::int32_t who[kBatch];
-  alignas(64) double dr[D][kBatch], dv[D][kBatch], dt[kBatch];
+  alignas(64) double dr[D][kBatch], dv[D][kBatch], bb[kBatch], rr[kBatch], disc[kBatch];
+  int hit[kBatch];
   int count = 0;
   double best = pred_[i].coll_time;
   const Vec<D> vi = kin_[i].v;
@@ -174,14 +175,24 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
         r2 += dr[k][m] * dr[k][m];
         a += dv[k][m] * dv[k][m];
       }
-      dt[m] = contact_time(b, r2, a);
+      bb[m] = b;
+      rr[m] = r2;
+      disc[m] = contact_discriminant(b, r2, a);
     }
-    for (int m = 0; m < count; ++m)
-      if (now_ + dt[m] < best) {
-        best = now_ + dt[m];
+    int hits = 0;
+    for (int m = 0; m < count; ++m) {
+      hit[hits] = m;
+      hits += will_touch(bb[m], disc[m]);
+    }
+    for (int h = 0; h < hits; ++h) {
+      const int m = hit[h];
+      const double t = now_ + contact_delay(bb[m], rr[m], disc[m]);
+      if (t < best) {
+        best = t;
         pred_[i].partner = who[m];
         pred_[i].partner_counter = kin_[who[m]].counter;
       }
+    }
     count = 0;
   };
   std::int32_t first[27];
