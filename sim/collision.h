@@ -43,8 +43,12 @@ CollisionResult collide(Vec<D>& v1, Vec<D>& v2, const Vec<D>& n, double r, doubl
 // The engine's batched search tests every neighbour without branches (half the pairs move
 // apart, at random, and a branch on that costs more in mispredictions than the arithmetic),
 // then takes the square root and the division only for the few that pass.
-inline double contact_discriminant(double b, double r2, double a) { return b * b - a * (r2 - 1.0); }
-inline bool will_touch(double b, double disc) { return (b < 0) & (disc > 0); }
+inline double contact_discriminant(double b, double r2, double a) {
+  return b * b - a * (r2 - 1.0);
+}
+inline bool will_touch(double b, double disc) {
+  return (b < 0) & (disc > 0);
+}
 
 // c / (-b + sqrt(disc)) is the smaller root without the cancellation of (-b - sqrt(disc)) / a.
 // An approaching pair that already overlaps (r2 <= 1) collides at once (0): round-off may push a
