@@ -199,9 +199,9 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
   int cells = 0;
   for_each_cell([&](std::int32_t cell) {
     const std::int32_t h = head_[cell];
-    if (h < 0) return;
-    __builtin_prefetch(&kin_[h]);
-    first[cells++] = h;
+    __builtin_prefetch(&kin_[std::max(h, 0)]);
+    first[cells] = h;
+    cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
   });
   for (int c = 0; c < cells; ++c)
     for (std::int32_t j = first[c]; j >= 0; j = kin_[j].next) {
