@@ -46,8 +46,8 @@ class CellGrid {
     for (int k = 0; k < D; ++k) d[k] = minimum_image(d[k]);
     return d;
   }
-  // The same along one axis. A select rather than branches, and on a plain double: the engine's
-  // neighbour search calls it for every component of every neighbour.
+  // The same along one axis, on a plain double: the engine's neighbour search calls it for every
+  // component of every neighbour and keeps the separations in registers.
   double minimum_image(double d) const {
     const double half = 0.5 * box_, down = d - box_, up = d + box_;
     return d > half ? down : (d < -half ? up : d);
