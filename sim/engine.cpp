@@ -19,10 +19,11 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   sort_by_cell(init);
   kin_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], -1, 0};
+  for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], 0};
   cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
   head_.assign(grid_.cell_count(), -1);
+  next_.assign(n, -1);
   prev_.assign(n, -1);
   pred_.assign(n, Prediction{});
   active_.assign(n, 0);
@@ -90,7 +91,7 @@ void Engine<D>::sort_by_cell(InitialState<D>& init) {
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  kin_[i].next = head_[cell];
+  next_[i] = head_[cell];
   prev_[i] = -1;
   if (head_[cell] >= 0) prev_[head_[cell]] = i;
   head_[cell] = i;
@@ -98,9 +99,9 @@ void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
 
 template <int D>
 void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
-  const std::int32_t next = kin_[i].next;
+  const std::int32_t next = next_[i];
   if (prev_[i] >= 0)
-    kin_[prev_[i]].next = next;
+    next_[prev_[i]] = next;
   else
     head_[cell] = next;
   if (next >= 0) prev_[next] = prev_[i];
@@ -143,8 +144,9 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 }
 
 // Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
-// search is bound by memory latency: the first particle of every cell is fetched before any is
-// read, so that their cache misses overlap instead of queueing behind each other; separations
+// search is bound by memory latency: the cell lists are walked (they are small and apart from
+// the particle data) and every neighbour's cache line is requested before any is read, so that
+// the misses overlap instead of queueing behind each other; separations
 // and relative velocities are gathered into small arrays, every pair is tested in a loop the
 // compiler vectorises, and only those that will touch (about one in six at packing 0.5) go on
 // to the square root and the division.
@@ -200,13 +202,13 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
   int cells = 0;
   for_each_cell([&](std::int32_t cell) {
     const std::int32_t h = head_[cell];
-    __builtin_prefetch(&kin_[std::max(h, 0)]);
     first[cells] = h;
     cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
   });
   for (int c = 0; c < cells; ++c)
-    for (std::int32_t j = first[c]; j >= 0; j = kin_[j].next) {
+    for (std::int32_t j = first[c]; j >= 0; j = next_[j]) {
       if (j == i) continue;
+      __builtin_prefetch(&kin_[j]);
       who[count] = j;
       if (++count == kBatch) evaluate();
     }
@@ -273,12 +275,29 @@ void Engine<D>::run_until(double t) {
 template <int D>
 EventKind Engine<D>::process_next() {
   const std::int32_t i = queue_.top();
+  // Events come in time order but anywhere in the box, so each starts with cache misses on its
+  // particles' records. Those of the next two events are requested while this one is handled:
+  // the one after next gets its own records, the next one (whose own came one event ago) its
+  // partner's.
+  queue_.peek_soon(2, [&](std::int32_t k, int left) {
+    if (left == 0) {
+      __builtin_prefetch(&pred_[k]);
+      __builtin_prefetch(&kin_[k]);
+      __builtin_prefetch(&cell_[k]);
+    } else if (const std::int32_t p = pred_[k].partner; p >= 0) {
+      __builtin_prefetch(&kin_[p]);
+    }
+  });
   ++stats_.events;
   if (pred_[i].cross_time <= pred_[i].coll_time) {
     cross_cell(i);
     return EventKind::Crossing;
   }
   const std::int32_t j = pred_[i].partner;
+  // The partner's records are needed only after i's search, but are requested now.
+  __builtin_prefetch(&pred_[j]);
+  __builtin_prefetch(&cell_[j]);
+  queue_.prefetch(j);
   if (kin_[j].counter != pred_[i].partner_counter) {  // the partner has changed course since
     ++stats_.stale;
     predict(i);
@@ -453,7 +472,7 @@ double Engine<D>::max_overlap_now() const {
   for (std::int32_t i = 0; i < n; ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell]; j >= 0; j = kin_[j].next)
+      for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });
   }

@@ -130,7 +130,6 @@ class Engine final : public Simulation {
     Vec<D> x;
     double t;
     Vec<D> v;
-    std::int32_t next;      // next particle in the same cell, or -1
     std::uint32_t counter;  // bumped at every velocity change
   };
   std::vector<Kinematics> kin_;
@@ -138,8 +137,9 @@ class Engine final : public Simulation {
   std::vector<IVec<D>> cell_;
   std::vector<IVec<D>> image_;
 
-  // Cells as intrusive doubly linked lists (next is in Kinematics).
-  std::vector<std::int32_t> head_, prev_;
+  // Cells as doubly linked lists, apart from the particle data: a search walks them without
+  // waiting for each particle's cache line.
+  std::vector<std::int32_t> head_, next_, prev_;
 
   // The next event of each particle: best collision and next crossing, in one half cache line
   // because every event reads all of it.

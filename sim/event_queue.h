@@ -67,6 +67,27 @@ class EventQueue {
     }
   }
 
+  // After top(): calls f(id, left) for particles whose events follow the top's (the rest of the
+  // top's bucket, then one of each of the next few non-empty buckets), at most `count` of them,
+  // with left counting down to 0. A caller can start loading their data while it handles the
+  // top. Events further off than kPeekBuckets buckets are not worth it.
+  template <class F>
+  void peek_soon(int count, F&& f) {
+    for (std::int32_t j = head_[static_cast<std::size_t>(cur_) & mask_]; j != kNone && count > 0;
+         j = entry_[j].next)
+      if (j != top_) f(j, --count);
+    for (std::int64_t b = cur_ + 1; b < year_end_ && b <= cur_ + kPeekBuckets && count > 0; ++b) {
+      const std::int32_t h = head_[static_cast<std::size_t>(b) & mask_];
+      if (h != kNone) {
+        __builtin_prefetch(&entry_[h]);
+        f(h, --count);
+      }
+    }
+  }
+
+  // Starts loading what set(id) or remove(id) will touch first.
+  void prefetch(std::int32_t id) const { __builtin_prefetch(&entry_[id]); }
+
   void remove(std::int32_t id) {
     if (!contains(id)) return;
     unlink(id);
@@ -79,6 +100,7 @@ class EventQueue {
   static constexpr std::int64_t kOverflow = -2;  // bucket of the entries beyond this year
   static constexpr std::size_t kMinBuckets = 64;
   static constexpr int kLongList = 64;  // entries: a bucket this full, or a sample this large
+  static constexpr int kPeekBuckets = 16;
 
   struct Entry {
     double time = 0;

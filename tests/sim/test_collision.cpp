@@ -102,7 +102,8 @@ TEST(EventQueue, PopsInTimeOrderUnderUpdates) {
 // rescheduled later, others are rescheduled or dropped, new ones arrive. Event spacings sweep
 // six decades while the population grows to 4000 and shrinks again, and one event in twenty is
 // far in the future, so the calendar must re-choose its width and size and carry events over
-// years; every top must still be the true earliest.
+// years; every top must still be the true earliest, and the events peeked at after it (for
+// prefetching) must be other queued events, no earlier than it.
 TEST(EventQueue, FollowsEventRatesOverSixDecades) {
   Rng rng(5, 0, Stream::Positions);
   const int n = 4000, steps = 300000;
@@ -127,6 +128,12 @@ TEST(EventQueue, FollowsEventRatesOverSixDecades) {
     ASSERT_EQ(q.top_time(), ref.begin()->first) << "step " << k;
     ASSERT_EQ(q.top(), ref.begin()->second) << "step " << k;
     const double now = ref.begin()->first;
+    int expect_left = 2;
+    q.peek_soon(3, [&](std::int32_t id, int left) {
+      ASSERT_EQ(left, expect_left--);
+      ASSERT_NE(id, q.top());
+      ASSERT_GE(key[id], now);
+    });
     const double spacing = 1e-3 * std::pow(1e6, static_cast<double>(k) / steps);
     auto later = [&] {
       const double t = -std::log(1 - rng.uniform()) * spacing * q.size();
