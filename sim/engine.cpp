@@ -332,6 +332,7 @@ void Engine<D>::collide_pair(std::int32_t i, std::int32_t j) {
     mark_active(j);
   }
   predict(i);
+  queue_.prefetch_neighbours(j);  // j's entry came during i's search; its neighbours come now
   predict(j);
 }
 

@@ -85,8 +85,14 @@ class EventQueue {
     }
   }
 
-  // Starts loading what set(id) or remove(id) will touch first.
+  // Starts loading what set(id) or remove(id) will touch: the entry first, and once it has
+  // arrived, its neighbours in its bucket.
   void prefetch(std::int32_t id) const { __builtin_prefetch(&entry_[id]); }
+  void prefetch_neighbours(std::int32_t id) const {
+    const Entry& e = entry_[id];
+    if (e.next != kNone) __builtin_prefetch(&entry_[e.next]);
+    if (e.prev != kNone) __builtin_prefetch(&entry_[e.prev]);
+  }
 
   void remove(std::int32_t id) {
     if (!contains(id)) return;
