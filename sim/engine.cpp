@@ -146,10 +146,10 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 // Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
 // search is bound by memory latency: the cell lists are walked (they are small and apart from
 // the particle data) and every neighbour's cache line is requested before any is read, so that
-// the misses overlap instead of queueing behind each other; separations
-// and relative velocities are gathered into small arrays, every pair is tested in a loop the
-// compiler vectorises, and only those that will touch (about one in six at packing 0.5) go on
-// to the square root and the division.
+// the misses overlap instead of queueing behind each other; separations and relative velocities
+// are gathered into small arrays, every pair is tested in a loop the compiler vectorises, and
+// only those that will touch (about one in six at packing 0.5) go on to the square root and the
+// division.
 template <int D>
 template <class ForEachCell>
 void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
