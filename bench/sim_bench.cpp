@@ -53,6 +53,16 @@ std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
           {"overlaps", static_cast<double>(sim.stats().overlaps), "", "0"}};
 }
 
+// The packing-0.5 gas at growing N: the rate falls where the particle records (64 B each, plus
+// the queue's and the predictions') outgrow a core's 2 MiB L2 cache, between N = 27000 and 64000.
+std::vector<Figure> thermal3d_by_size() {
+  std::vector<Figure> out;
+  for (const std::int64_t n : {9261, 27000, 64000, 100000, 216000})
+    out.push_back(
+        {"collisions_per_cpu_second_N" + std::to_string(n), thermal3d(0.5, n)[0].value, "1/s", ""});
+  return out;
+}
+
 std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
   PhysicsConfig c;
   c.dim = dim;
@@ -99,6 +109,9 @@ void add_sim_cases(std::vector<Case>& cases) {
   cases.push_back({"sim/in_cache_thermal3d_phi0.5",
                    "elastic 3D gas, N = 21^3 = 9261, packing 0.5 (lattice start)", false,
                    [] { return thermal3d(0.5, 9261); }});
+  cases.push_back({"sim/sizes_thermal3d_phi0.5",
+                   "elastic 3D gas, packing 0.5 (lattice start), N = 9261 to 216000", true,
+                   thermal3d_by_size});
   cases.push_back({"sim/kick2d_paper", "2D kick, N = 2.5e5, r = 0.8, to t = 87581", false,
                    [] { return kick(2, 250000, "< 1 s"); }});
   cases.push_back(
