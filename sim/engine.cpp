@@ -143,24 +143,50 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
   return grid_.minimum_image(k.x + k.v * (now_ - k.t) - xi);
 }
 
-// Looks for the earliest collision of i (at xi now) with the particles of the given cells. The
-// search is bound by memory latency: the cell lists are walked (they are small and apart from
-// the particle data) and every neighbour's cache line is requested before any is read, so that
-// the misses overlap instead of queueing behind each other; separations and relative velocities
-// are gathered into small arrays, every pair is tested in a loop the compiler vectorises, and
-// only those that will touch (about one in six at packing 0.5) go on to the square root and the
-// division.
+// Lists the particles of the given cells other than i and requests their cache lines. A search
+// is bound by memory latency: the cell lists are small and apart from the particle data, so
+// walking them does not wait on the particles, and the particles' lines arrive while the lists
+// of the other cells (or of the other sphere of a collision) are still being walked.
 template <int D>
 template <class ForEachCell>
-void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell) {
+void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
+  std::int32_t first[27];
+  int cells = 0;
+  for_each_cell([&](std::int32_t cell) {
+    const std::int32_t h = head_[cell];
+    first[cells] = h;
+    cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
+  });
+  int count = 0;
+  for (int c = 0; c < cells; ++c)
+    for (std::int32_t j = first[c]; j >= 0; j = next_[j]) {
+      if (j == i) continue;
+      __builtin_prefetch(&kin_[j]);
+      GS_CHECK(count < Neighbours::kMax);
+      nb.who[count++] = j;
+    }
+  nb.count = count;
+}
+
+template <int D>
+void Engine<D>::gather_stencil(std::int32_t i, Neighbours& nb) {
+  gather(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_[i], f); });
+}
+
+// Looks for a collision of i (at xi now) with the gathered particles earlier than its current
+// one. Separations and relative velocities are gathered into small arrays, every pair is tested
+// in a loop the compiler vectorises, and only those that will touch (about one in six at packing
+// 0.5) go on to the square root and the division.
+template <int D>
+void Engine<D>::search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb) {
   constexpr int kBatch = 64;
-  std::int32_t who[kBatch];
   alignas(64) double dr[D][kBatch], dv[D][kBatch], bb[kBatch], rr[kBatch], disc[kBatch];
   int hit[kBatch];
-  int count = 0;
   double best = pred_[i].coll_time;
   const Vec<D> vi = kin_[i].v;
-  const auto evaluate = [&] {
+  for (int start = 0; start < nb.count; start += kBatch) {
+    const std::int32_t* who = nb.who + start;
+    const int count = std::min(kBatch, nb.count - start);
     // Component by component on plain doubles: through Eigen temporaries the compiler keeps the
     // separation on the stack and stalls on reading it back.
     for (int m = 0; m < count; ++m) {
@@ -196,23 +222,7 @@ void Engine<D>::scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_e
         pred_[i].partner_counter = kin_[who[m]].counter;
       }
     }
-    count = 0;
-  };
-  std::int32_t first[27];
-  int cells = 0;
-  for_each_cell([&](std::int32_t cell) {
-    const std::int32_t h = head_[cell];
-    first[cells] = h;
-    cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
-  });
-  for (int c = 0; c < cells; ++c)
-    for (std::int32_t j = first[c]; j >= 0; j = next_[j]) {
-      if (j == i) continue;
-      __builtin_prefetch(&kin_[j]);
-      who[count] = j;
-      if (++count == kBatch) evaluate();
-    }
-  evaluate();
+  }
   pred_[i].coll_time = best;
 }
 
@@ -248,10 +258,17 @@ void Engine<D>::schedule(std::int32_t i) {
 // when they have just stopped, because a moving neighbour may be heading for them.
 template <int D>
 void Engine<D>::predict(std::int32_t i) {
+  gather_stencil(i, near_[0]);
+  predict_from(i, near_[0]);
+}
+
+// The same, with i's stencil already gathered.
+template <int D>
+void Engine<D>::predict_from(std::int32_t i, const Neighbours& nb) {
   const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
   pred_[i].coll_time = kNever;
   pred_[i].partner = -1;
-  scan_cells(i, xi, [&](auto&& f) { grid_.for_each_neighbour(cell_[i], f); });
+  search(i, xi, nb);
   predict_crossing(i, xi);
   schedule(i);
 }
@@ -331,9 +348,12 @@ void Engine<D>::collide_pair(std::int32_t i, std::int32_t j) {
     mark_active(i);
     mark_active(j);
   }
-  predict(i);
+  // Both stencils are gathered first, so that j's particles arrive during i's search.
+  gather_stencil(i, near_[0]);
+  gather_stencil(j, near_[1]);
+  predict_from(i, near_[0]);
   queue_.prefetch_neighbours(j);  // j's entry came during i's search; its neighbours come now
-  predict(j);
+  predict_from(j, near_[1]);
 }
 
 // Exact sticky limit in 1D: the two clusters that meet merge and move on with their common
@@ -396,8 +416,9 @@ void Engine<D>::cross_cell(std::int32_t i) {
     return;
   }
   const Vec<D> xi = kin_[i].x;
-  scan_cells(i, xi,
-             [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
+  gather(i, near_[0],
+         [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
+  search(i, xi, near_[0]);
   predict_crossing(i, xi);
   schedule(i);
 }

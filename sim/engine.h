@@ -103,9 +103,20 @@ class Engine final : public Simulation {
   EventKind process_next();
   void advance(std::int32_t i);
   Vec<D> separation(const Vec<D>& xi, std::int32_t j) const;
+  // The particles a search will test, other than the searching one. A stencil of 3^d cells of
+  // side at most 1.5 lies in a cube of side 5.5 around the spheres it holds, so it cannot hold
+  // more than 5.5^3 / (pi / 6) < 320 non-overlapping spheres.
+  struct Neighbours {
+    static constexpr int kMax = 320;
+    int count = 0;
+    std::int32_t who[kMax];
+  };
   template <class ForEachCell>
-  void scan_cells(std::int32_t i, const Vec<D>& xi, ForEachCell&& for_each_cell);
+  void gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell);
+  void gather_stencil(std::int32_t i, Neighbours& nb);
+  void search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb);
   void predict(std::int32_t i);
+  void predict_from(std::int32_t i, const Neighbours& nb);
   void predict_crossing(std::int32_t i, const Vec<D>& xi);
   void schedule(std::int32_t i);
   void collide_pair(std::int32_t i, std::int32_t j);
@@ -152,6 +163,7 @@ class Engine final : public Simulation {
   };
   std::vector<Prediction> pred_;
   EventQueue queue_;
+  Neighbours near_[2];  // scratch of the searches: the two spheres of a collision
 
   std::vector<std::uint8_t> active_, moving_;
   std::vector<double> first_collision_;
