@@ -260,9 +260,11 @@ template <int D>
 void Engine<D>::predict(std::int32_t i) {
   gather_stencil(i, near_[0]);
   predict_from(i, near_[0]);
+  schedule(i);
 }
 
-// The same, with i's stencil already gathered.
+// The same, with i's stencil already gathered, short of putting the event into the queue. The
+// queue's bucket for it is requested, because that costs a cache miss too.
 template <int D>
 void Engine<D>::predict_from(std::int32_t i, const Neighbours& nb) {
   const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
@@ -270,7 +272,7 @@ void Engine<D>::predict_from(std::int32_t i, const Neighbours& nb) {
   pred_[i].partner = -1;
   search(i, xi, nb);
   predict_crossing(i, xi);
-  schedule(i);
+  queue_.prefetch_bucket(std::min(pred_[i].coll_time, pred_[i].cross_time));
 }
 
 template <int D>
@@ -348,12 +350,15 @@ void Engine<D>::collide_pair(std::int32_t i, std::int32_t j) {
     mark_active(i);
     mark_active(j);
   }
-  // Both stencils are gathered first, so that j's particles arrive during i's search.
+  // Both stencils are gathered first, so that j's particles arrive during i's search, and both
+  // events are queued last, so that i's bucket in the queue arrives during j's search.
   gather_stencil(i, near_[0]);
   gather_stencil(j, near_[1]);
   predict_from(i, near_[0]);
   queue_.prefetch_neighbours(j);  // j's entry came during i's search; its neighbours come now
   predict_from(j, near_[1]);
+  schedule(i);
+  schedule(j);
 }
 
 // Exact sticky limit in 1D: the two clusters that meet merge and move on with their common

@@ -94,6 +94,12 @@ class EventQueue {
     if (e.prev != kNone) __builtin_prefetch(&entry_[e.prev]);
   }
 
+  // Starts loading the head of the bucket that an event at time t will join.
+  void prefetch_bucket(double t) const {
+    const std::int64_t b = bucket_of(t);
+    if (b < year_end_) __builtin_prefetch(&head_[static_cast<std::size_t>(b) & mask_]);
+  }
+
   void remove(std::int32_t id) {
     if (!contains(id)) return;
     unlink(id);
