@@ -103,9 +103,10 @@ class Engine final : public Simulation {
   EventKind process_next();
   void advance(std::int32_t i);
   Vec<D> separation(const Vec<D>& xi, std::int32_t j) const;
-  // The particles a search will test, other than the searching one. A stencil of 3^d cells of
-  // side at most 1.5 lies in a cube of side 5.5 around the spheres it holds, so it cannot hold
-  // more than 5.5^3 / (pi / 6) < 320 non-overlapping spheres.
+  // The particles a search will test, other than the searching one. A stencil is at most 4.5
+  // diameters wide (cells are under 1.5 wide when there are two or more per side, and a lone
+  // cell is under 2 wide), so its spheres lie in a cube of side 5.5 and cannot number more than
+  // 5.5^3 / (pi / 6) < 320.
   struct Neighbours {
     static constexpr int kMax = 320;
     int count = 0;
