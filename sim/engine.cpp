@@ -298,15 +298,15 @@ EventKind Engine<D>::process_next() {
   // particles' records. Those of the next two events are requested while this one is handled:
   // the one after next gets its own records, the next one (whose own came one event ago) its
   // partner's.
-  queue_.peek_soon(2, [&](std::int32_t k, int left) {
-    if (left == 0) {
-      __builtin_prefetch(&pred_[k]);
-      __builtin_prefetch(&kin_[k]);
-      __builtin_prefetch(&cell_[k]);
-    } else if (const std::int32_t p = pred_[k].partner; p >= 0) {
-      __builtin_prefetch(&kin_[p]);
-    }
-  });
+  const EventQueue::Soon soon = queue_.peek_soon(2);
+  if (soon.count > 1) {
+    const std::int32_t k = soon.id[1];
+    __builtin_prefetch(&pred_[k]);
+    __builtin_prefetch(&kin_[k]);
+    __builtin_prefetch(&cell_[k]);
+  }
+  if (soon.count > 0)
+    if (const std::int32_t p = pred_[soon.id[0]].partner; p >= 0) __builtin_prefetch(&kin_[p]);
   ++stats_.events;
   if (pred_[i].cross_time <= pred_[i].coll_time) {
     cross_cell(i);

@@ -67,22 +67,53 @@ class EventQueue {
     }
   }
 
-  // After top(): calls f(id, left) for particles whose events follow the top's (the rest of the
-  // top's bucket, then one of each of the next few non-empty buckets), at most `count` of them,
-  // with left counting down to 0. A caller can start loading their data while it handles the
-  // top. Events further off than kPeekBuckets buckets are not worth it.
-  template <class F>
-  void peek_soon(int count, F&& f) {
-    for (std::int32_t j = head_[static_cast<std::size_t>(cur_) & mask_]; j != kNone && count > 0;
-         j = entry_[j].next)
-      if (j != top_) f(j, --count);
-    for (std::int64_t b = cur_ + 1; b < year_end_ && b <= cur_ + kPeekBuckets && count > 0; ++b) {
-      const std::int32_t h = head_[static_cast<std::size_t>(b) & mask_];
-      if (h != kNone) {
-        __builtin_prefetch(&entry_[h]);
-        f(h, --count);
+  // After top(): up to `count` (at most kMaxPeek) particles whose events follow the top's, so
+  // that a caller can start loading their data while it handles the top. The top's bucket has
+  // just been scanned, so its entries are taken in time order (the list is in no order); later
+  // buckets, up to kPeekBuckets on, give only their first entry, whose line is requested, not
+  // waited for. A pair that predicted each other has two entries due at the same instant (to
+  // round-off), and handling the first reschedules the second: so an entry due with the one
+  // before it is left out.
+  static constexpr int kMaxPeek = 4;
+  struct Soon {
+    int count = 0;
+    std::int32_t id[kMaxPeek];
+  };
+  Soon peek_soon(int count) const {
+    count = std::min(count, kMaxPeek);
+    std::int32_t id[kMaxPeek];
+    double time[kMaxPeek];
+    int n = 0, seen = 0;
+    for (std::int32_t j = head_[static_cast<std::size_t>(cur_) & mask_];
+         j != kNone && seen < kLongList; j = entry_[j].next, ++seen) {
+      if (j == top_) continue;
+      // Insertion into the sorted list of the earliest so far.
+      const double t = entry_[j].time;
+      int m = n < kMaxPeek ? n++ : kMaxPeek;
+      for (; m > 0 && time[m - 1] > t; --m)
+        if (m < kMaxPeek) {
+          time[m] = time[m - 1];
+          id[m] = id[m - 1];
+        }
+      if (m < kMaxPeek) {
+        time[m] = t;
+        id[m] = j;
       }
     }
+    Soon soon;
+    double last = top_known_time_;
+    for (int m = 0; m < n && soon.count < count; ++m) {
+      if (time[m] - last <= 1e-12 * std::abs(time[m])) continue;
+      soon.id[soon.count++] = id[m];
+      last = time[m];
+    }
+    for (std::int64_t b = cur_ + 1; b < year_end_ && b <= cur_ + kPeekBuckets && soon.count < count;
+         ++b)
+      if (const std::int32_t h = head_[static_cast<std::size_t>(b) & mask_]; h != kNone) {
+        __builtin_prefetch(&entry_[h]);
+        soon.id[soon.count++] = h;
+      }
+    return soon;
   }
 
   // Starts loading what set(id) or remove(id) will touch: the entry first, and once it has

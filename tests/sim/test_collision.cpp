@@ -103,7 +103,7 @@ TEST(EventQueue, PopsInTimeOrderUnderUpdates) {
 // six decades while the population grows to 4000 and shrinks again, and one event in twenty is
 // far in the future, so the calendar must re-choose its width and size and carry events over
 // years; every top must still be the true earliest, and the events peeked at after it (for
-// prefetching) must be other queued events, no earlier than it.
+// prefetching) must be other queued events, later than it and in time order.
 TEST(EventQueue, FollowsEventRatesOverSixDecades) {
   Rng rng(5, 0, Stream::Positions);
   const int n = 4000, steps = 300000;
@@ -128,12 +128,11 @@ TEST(EventQueue, FollowsEventRatesOverSixDecades) {
     ASSERT_EQ(q.top_time(), ref.begin()->first) << "step " << k;
     ASSERT_EQ(q.top(), ref.begin()->second) << "step " << k;
     const double now = ref.begin()->first;
-    int expect_left = 2;
-    q.peek_soon(3, [&](std::int32_t id, int left) {
-      ASSERT_EQ(left, expect_left--);
-      ASSERT_NE(id, q.top());
-      ASSERT_GE(key[id], now);
-    });
+    const EventQueue::Soon soon = q.peek_soon(2);
+    for (int m = 0; m < soon.count; ++m) {
+      ASSERT_NE(soon.id[m], q.top());
+      ASSERT_GT(key[soon.id[m]], m > 0 ? key[soon.id[m - 1]] : now);
+    }
     const double spacing = 1e-3 * std::pow(1e6, static_cast<double>(k) / steps);
     auto later = [&] {
       const double t = -std::log(1 - rng.uniform()) * spacing * q.size();
@@ -148,6 +147,21 @@ TEST(EventQueue, FollowsEventRatesOverSixDecades) {
     else if (key[other] >= 0)
       put(other, later());
   }
+}
+
+// Peeking looks past the order of a bucket's list (the last set comes first) and past the entry
+// of the top's partner, due at the top's instant: the next two events are 3 and 4.
+TEST(EventQueue, PeekSortsTheBucketAndSkipsThePartner) {
+  EventQueue q(8);
+  const double time[] = {0.1, 0.1, 0.5, 0.3, 0.4};  // one bucket: the first is 1 wide
+  for (int i = 0; i < 5; ++i) q.set(i, time[i]);
+  ASSERT_EQ(q.top_time(), 0.1);
+  const std::int32_t partner = q.top() == 0 ? 1 : 0;
+  const EventQueue::Soon soon = q.peek_soon(2);
+  ASSERT_EQ(soon.count, 2);
+  EXPECT_EQ(soon.id[0], 3);
+  EXPECT_EQ(soon.id[1], 4);
+  EXPECT_NE(soon.id[0], partner);
 }
 
 // A lattice start can put thousands of events at one instant (every sphere on a cell wall): the
