@@ -64,6 +64,10 @@ void validate(const PhysicsConfig& c) {
   if (c.box() < 3.0)
     fail("--particles " + std::to_string(c.particles) + ": box side " + num(c.box()) +
          " is under 3 diameters; use more particles");
+  // The engine keeps a particle's cell coordinates in 16 bits, beside its next event.
+  if (c.dim > 1 && c.box() > 32767)
+    fail("--density " + num(c.density) + ": box side " + num(c.box()) +
+         " is over 32767 diameters in " + std::to_string(c.dim) + "D; use a higher density");
 }
 
 const char* to_string(Initial i) {

@@ -17,10 +17,10 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   const std::size_t n = init.position.size();
   GS_CHECK(n >= 2 && init.velocity.size() == n);
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
+  GS_CHECK(D == 1 || grid_.per_side() <= INT16_MAX);  // Prediction::cell; validate() tells users
   sort_by_cell(init);
   kin_.resize(n);
   for (std::size_t i = 0; i < n; ++i) kin_[i] = {init.position[i], 0.0, init.velocity[i], 0};
-  cell_.resize(n);
   image_.assign(n, IVec<D>::Zero());
   head_.assign(grid_.cell_count(), -1);
   next_.assign(n, -1);
@@ -33,8 +33,8 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
 
   for (std::size_t i = 0; i < n; ++i) {
     const auto id = static_cast<std::int32_t>(i);
-    cell_[i] = grid_.coords_of(kin_[i].x);
-    cell_insert(id, grid_.index(cell_[i]));
+    set_cell(id, grid_.coords_of(kin_[i].x));
+    cell_insert(id, grid_.index(cell_of(id)));
   }
   if (config_.sticky()) {
     for (std::size_t i = 1; i < n; ++i) GS_CHECK(kin_[i].x[0] >= kin_[i - 1].x[0]);
@@ -170,7 +170,7 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
 
 template <int D>
 void Engine<D>::gather_stencil(std::int32_t i, Neighbours& nb) {
-  gather(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_[i], f); });
+  gather(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
 }
 
 // Looks for a collision of i (at xi now) with the gathered particles earlier than its current
@@ -234,7 +234,7 @@ void Engine<D>::predict_crossing(std::int32_t i, const Vec<D>& xi) {
   for (int k = 0; k < D; ++k) {
     const double v = kin_[i].v[k];
     if (v == 0) continue;
-    const double wall = (cell_[i][k] + (v > 0 ? 1 : 0)) * h;
+    const double wall = (pred_[i].cell[k] + (v > 0 ? 1 : 0)) * h;
     const double dt = std::max(0.0, (wall - xi[k]) / v);  // round-off can put xi a hair past it
     if (dt < best) {
       best = dt;
@@ -303,7 +303,6 @@ EventKind Engine<D>::process_next() {
     const std::int32_t k = soon.id[1];
     __builtin_prefetch(&pred_[k]);
     __builtin_prefetch(&kin_[k]);
-    __builtin_prefetch(&cell_[k]);
   }
   if (soon.count > 0)
     if (const std::int32_t p = pred_[soon.id[0]].partner; p >= 0) __builtin_prefetch(&kin_[p]);
@@ -315,7 +314,6 @@ EventKind Engine<D>::process_next() {
   const std::int32_t j = pred_[i].partner;
   // The partner's records are needed only after i's search, but are requested now.
   __builtin_prefetch(&pred_[j]);
-  __builtin_prefetch(&cell_[j]);
   queue_.prefetch(j);
   if (kin_[j].counter != pred_[i].partner_counter) {  // the partner has changed course since
     ++stats_.stale;
@@ -399,8 +397,9 @@ void Engine<D>::cross_cell(std::int32_t i) {
   advance(i);
   const int k = pred_[i].cross_dir >> 1;
   const int step = (pred_[i].cross_dir & 1) ? 1 : -1;
-  cell_remove(i, grid_.index(cell_[i]));
-  int c = cell_[i][k] + step;
+  IVec<D> cell = cell_of(i);
+  cell_remove(i, grid_.index(cell));
+  int c = cell[k] + step;
   if (c == grid_.per_side()) {
     c = 0;
     kin_[i].x[k] -= grid_.box();
@@ -410,8 +409,9 @@ void Engine<D>::cross_cell(std::int32_t i) {
     kin_[i].x[k] += grid_.box();
     --image_[i][k];
   }
-  cell_[i][k] = c;
-  cell_insert(i, grid_.index(cell_[i]));
+  cell[k] = c;
+  set_cell(i, cell);
+  cell_insert(i, grid_.index(cell));
 
   // The best collision among the old neighbours is still the best unless its partner moved on;
   // then only the layer of cells that has just come into reach needs a look.
@@ -421,8 +421,7 @@ void Engine<D>::cross_cell(std::int32_t i) {
     return;
   }
   const Vec<D> xi = kin_[i].x;
-  gather(i, near_[0],
-         [&](auto&& f) { grid_.for_each_in_layer(cell_[i], k, grid_.wrap(c + step), f); });
+  gather(i, near_[0], [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
   search(i, xi, near_[0]);
   predict_crossing(i, xi);
   schedule(i);
@@ -498,7 +497,7 @@ double Engine<D>::max_overlap_now() const {
   double deepest = 0;
   for (std::int32_t i = 0; i < n; ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
-    grid_.for_each_neighbour(cell_[i], [&](std::int32_t cell) {
+    grid_.for_each_neighbour(cell_of(i), [&](std::int32_t cell) {
       for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });

@@ -44,6 +44,12 @@ TEST(Config, RejectsImpossibleInputNamingTheFlag) {
   EXPECT_NE(message([](PhysicsConfig& c) { c.cutoff = -1; }).find("--cutoff"), std::string::npos);
   EXPECT_NE(message([](PhysicsConfig& c) { c.t_max = 0; }).find("--t-max"), std::string::npos);
   EXPECT_NE(message([](PhysicsConfig& c) { c.lattice = 2; }).find("--lattice"), std::string::npos);
+  EXPECT_NE(message([](PhysicsConfig& c) {
+              c.dim = 2;
+              c.particles = 200000000;
+              c.density = 0.1;  // box side 44721
+            }).find("--density"),
+            std::string::npos);
   EXPECT_EQ(message([](PhysicsConfig&) {}), "accepted");
   EXPECT_EQ(message([](PhysicsConfig& c) { c.restitution = 1.0; }), "accepted");
   EXPECT_EQ(message([](PhysicsConfig& c) { c.restitution = 0.0; }), "accepted");
