@@ -53,8 +53,9 @@ std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
           {"overlaps", static_cast<double>(sim.stats().overlaps), "", "0"}};
 }
 
-// The packing-0.5 gas at growing N: the rate falls where the particle records (64 B each, plus
-// the queue's and the predictions') outgrow a core's 2 MiB L2 cache, between N = 27000 and 64000.
+// The packing-0.5 gas at growing N: the rate falls as the particle records (64 B each, plus 32 B
+// of prediction and 24 B of queue entry) outgrow the caches. A core has 1 MiB of L2, which holds
+// them only at N = 9261; the steepest fall, between N = 27000 and 64000, is further out.
 std::vector<Figure> thermal3d_by_size() {
   std::vector<Figure> out;
   for (const std::int64_t n : {9261, 27000, 64000, 100000, 216000})
@@ -104,8 +105,8 @@ void add_sim_cases(std::vector<Case>& cases) {
                    [] { return thermal3d(0.2); }});
   cases.push_back({"sim/thermal3d_phi0.5", "elastic 3D gas, N = 1e5, packing 0.5 (lattice start)",
                    false, [] { return thermal3d(0.5); }});
-  // The same gas small enough for the particle data to stay in a core's 2 MiB L2 cache: the
-  // gap to N = 1e5 is the cost of cache misses in the neighbour search and the event queue.
+  // The same gas small enough for the particle data to stay about in a core's 1 MiB L2 cache:
+  // the gap to N = 1e5 is the cost of cache misses in the neighbour search and the event queue.
   cases.push_back({"sim/in_cache_thermal3d_phi0.5",
                    "elastic 3D gas, N = 21^3 = 9261, packing 0.5 (lattice start)", false,
                    [] { return thermal3d(0.5, 9261); }});
