@@ -33,8 +33,9 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
 
   for (std::size_t i = 0; i < n; ++i) {
     const auto id = static_cast<std::int32_t>(i);
-    set_cell(id, grid_.coords_of(kin_[i].x));
-    cell_insert(id, grid_.index(cell_of(id)));
+    const IVec<D> cell = grid_.coords_of(kin_[i].x);
+    set_cell(id, cell);
+    cell_insert(id, grid_.index(cell));
   }
   if (config_.sticky()) {
     for (std::size_t i = 1; i < n; ++i) GS_CHECK(kin_[i].x[0] >= kin_[i - 1].x[0]);

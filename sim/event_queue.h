@@ -87,18 +87,16 @@ class EventQueue {
     for (std::int32_t j = head_[static_cast<std::size_t>(cur_) & mask_];
          j != kNone && seen < kLongList; j = entry_[j].next, ++seen) {
       if (j == top_) continue;
-      // Insertion into the sorted list of the earliest so far.
+      // Insertion into the sorted list of the earliest so far; when it is full, the last goes.
       const double t = entry_[j].time;
-      int m = n < kMaxPeek ? n++ : kMaxPeek;
-      for (; m > 0 && time[m - 1] > t; --m)
-        if (m < kMaxPeek) {
-          time[m] = time[m - 1];
-          id[m] = id[m - 1];
-        }
-      if (m < kMaxPeek) {
-        time[m] = t;
-        id[m] = j;
+      if (n == kMaxPeek && t >= time[kMaxPeek - 1]) continue;
+      int m = n < kMaxPeek ? n++ : kMaxPeek - 1;
+      for (; m > 0 && time[m - 1] > t; --m) {
+        time[m] = time[m - 1];
+        id[m] = id[m - 1];
       }
+      time[m] = t;
+      id[m] = j;
     }
     Soon soon;
     double last = top_known_time_;
