@@ -421,10 +421,13 @@ void Engine<D>::cross_cell(std::int32_t i) {
     predict(i);
     return;
   }
+  // The next crossing needs no search, so it comes first and the queue's bucket for the event
+  // is requested while the layer is searched (a new, earlier collision there is the exception).
   const Vec<D> xi = kin_[i].x;
+  predict_crossing(i, xi);
+  queue_.prefetch_bucket(std::min(pred_[i].coll_time, pred_[i].cross_time));
   gather(i, near_[0], [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
   search(i, xi, near_[0]);
-  predict_crossing(i, xi);
   schedule(i);
 }
 
