@@ -1,5 +1,6 @@
 // `grainshock bench`: the benchmarks of every area, as a table or JSON.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -15,6 +16,7 @@ void add_bench_command(CLI::App& app) {
   struct Options {
     std::vector<std::string> filter;
     bool all = false, list = false;
+    int repeat = 1;
     std::string json;
   };
   auto opt = std::make_shared<Options>();
@@ -22,6 +24,10 @@ void add_bench_command(CLI::App& app) {
   sub->add_option("filter", opt->filter, "Run only cases whose name contains one of these");
   sub->add_flag("--all", opt->all, "Include the heavy paper-scale cases");
   sub->add_flag("--list", opt->list, "List the cases and exit");
+  sub->add_option("--repeat", opt->repeat,
+                  "Run each case this many times and report the median of each figure, with the "
+                  "range (a shared machine can move a figure by 10% from one minute to the next)")
+      ->check(CLI::Range(1, 1000));
   sub->add_option("--json", opt->json, "Also write the figures to this JSON file");
   sub->callback([opt] {
     std::vector<bench::Case> cases;
@@ -49,12 +55,27 @@ void add_bench_command(CLI::App& app) {
       any = true;
       std::printf("%s: %s\n", c.name.c_str(), c.description.c_str());
       std::fflush(stdout);
-      for (const auto& f : c.run()) {
-        std::printf("  %-34s %14.6g %-4s %s\n", f.name.c_str(), f.value, f.unit.c_str(),
-                    f.target.empty() ? "" : ("target " + f.target).c_str());
+      std::vector<std::vector<bench::Figure>> runs;
+      for (int r = 0; r < opt->repeat; ++r) runs.push_back(c.run());
+      for (std::size_t k = 0; k < runs[0].size(); ++k) {
+        const bench::Figure& f = runs[0][k];
+        std::vector<double> values;
+        for (const auto& run : runs) {
+          GS_CHECK(run.size() == runs[0].size() && run[k].name == f.name);
+          values.push_back(run[k].value);
+        }
+        std::sort(values.begin(), values.end());
+        const std::size_t m = values.size() / 2;
+        const double median = values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+        std::printf("  %-34s %14.6g %-4s %s", f.name.c_str(), median, f.unit.c_str(),
+                    f.target.empty() ? "" : ("target " + f.target + "  ").c_str());
+        if (values.size() > 1) std::printf("range %.4g .. %.4g", values.front(), values.back());
+        std::printf("\n");
         json << (first ? "" : ",\n") << "  {\"case\": \"" << c.name << "\", \"figure\": \""
-             << f.name << "\", \"value\": " << json_number(f.value) << ", \"unit\": \"" << f.unit
-             << "\"}";
+             << f.name << "\", \"value\": " << json_number(median)
+             << ", \"min\": " << json_number(values.front())
+             << ", \"max\": " << json_number(values.back()) << ", \"runs\": " << values.size()
+             << ", \"unit\": \"" << f.unit << "\"}";
         first = false;
       }
       std::fflush(stdout);
