@@ -19,6 +19,7 @@
 #include "sim/collision.h"
 #include "sim/config.h"
 #include "sim/event_queue.h"
+#include "sim/huge_pages.h"
 #include "sim/initial.h"
 #include "sim/snapshot.h"
 #include "sim/vec.h"
@@ -145,13 +146,13 @@ class Engine final : public Simulation {
     Vec<D> v;
     std::uint32_t counter;  // bumped at every velocity change
   };
-  std::vector<Kinematics> kin_;
+  HugeVector<Kinematics> kin_;
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
   std::vector<IVec<D>> image_;
 
   // Cells as doubly linked lists, apart from the particle data: a search walks them without
   // waiting for each particle's cache line.
-  std::vector<std::int32_t> head_, next_, prev_;
+  HugeVector<std::int32_t> head_, next_, prev_;
 
   // The next event of each particle (best collision and next crossing) and its cell, in one half
   // cache line: every event reads all of it, and cells in an array of their own cost one more
@@ -175,7 +176,7 @@ class Engine final : public Simulation {
   void set_cell(std::int32_t i, const IVec<D>& c) {
     for (int k = 0; k < D; ++k) pred_[i].cell[k] = static_cast<CellCoord>(c[k]);
   }
-  std::vector<Prediction> pred_;
+  HugeVector<Prediction> pred_;
   EventQueue queue_;
   Neighbours near_[2];  // scratch of the searches: the two spheres of a collision
 

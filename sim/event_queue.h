@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "sim/error.h"
+#include "sim/huge_pages.h"
 
 namespace gs {
 
@@ -274,7 +275,7 @@ class EventQueue {
     top_ = kNone;
   }
 
-  std::vector<Entry> entry_;
+  HugeVector<Entry> entry_;  // read at random, like the engine's particle arrays
   std::vector<std::int32_t> head_;
   std::int32_t overflow_ = kNone;
   std::size_t mask_ = 0;

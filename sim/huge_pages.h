@@ -4,8 +4,9 @@
 // allocator gives blocks of 2 MiB or more 2 MiB alignment and marks them MADV_HUGEPAGE before
 // they are first touched, so that Linux with transparent huge pages in "madvise" mode (Debian's
 // default) backs them with huge pages; elsewhere it is a plain aligned allocation. Measured on
-// 2e6 spheres: 1.44 s -> 0.83 s. The engine's arrays gained ~1% of run time and lost more in
-// set-up (zeroing whole huge pages), so they stay on ordinary pages.
+// 2e6 spheres: 1.44 s -> 0.83 s. The engine's particle arrays and event queue entries are read
+// at random too: on them, 3D kicks take 4-6% less run time (N = 2e5 and 2e6); the thermal gas
+// at N = 1e5 and the 2D kick are unchanged.
 #include <sys/mman.h>
 
 #include <cstddef>
