@@ -93,7 +93,7 @@ std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
       {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
 }
 
-const Figure& find(const std::vector<Figure>& figures, const std::string& name) {
+const Figure& figure_named(const std::vector<Figure>& figures, const std::string& name) {
   const auto it =
       std::find_if(figures.begin(), figures.end(), [&](const Figure& f) { return f.name == name; });
   GS_CHECK_MSG(it != figures.end(), "no figure " + name);
@@ -111,12 +111,12 @@ std::vector<Figure> kick3d_scaling() {
   for (const auto& [figures, suffix] : {std::pair{&small, "_2e5"}, std::pair{&large, "_2e6"}})
     for (const char* name : {"run_cpu_seconds", "collisions", "cpu_microseconds_per_collision",
                              "cpu_microseconds_per_event", "crossings_per_collision", "overlaps"}) {
-      Figure f = find(*figures, name);
+      Figure f = figure_named(*figures, name);
       f.name += suffix;
       out.push_back(f);
     }
   const auto ratio = [&](const char* name) {
-    return find(large, name).value / find(small, name).value;
+    return figure_named(large, name).value / figure_named(small, name).value;
   };
   out.push_back(
       {"cost_per_collision_ratio", ratio("cpu_microseconds_per_collision"), "", "<= 1.2"});
