@@ -26,8 +26,6 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   next_.assign(n, -1);
   prev_.assign(n, -1);
   pred_.assign(n, Prediction{});
-  active_.assign(n, 0);
-  moving_.assign(n, 0);
   first_collision_.assign(n, -1.0);
   moved_.reserve(n);
 
@@ -110,16 +108,16 @@ void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
 
 template <int D>
 void Engine<D>::mark_moving(std::int32_t i) {
-  if (moving_[i]) return;
-  moving_[i] = 1;
+  if (kin_[i].moving) return;
+  kin_[i].moving = true;
   moved_.push_back(i);  // capacity reserved for all particles: never reallocates
 }
 
 template <int D>
 void Engine<D>::mark_active(std::int32_t i) {
   mark_moving(i);
-  if (active_[i]) return;
-  active_[i] = 1;
+  if (kin_[i].active) return;
+  kin_[i].active = true;
   first_collision_[i] = now_;
 }
 
@@ -443,7 +441,7 @@ Sample Engine<D>::sample() const {
     const double v2 = kin_[i].v.squaredNorm();
     s.energy += 0.5 * v2;
     for (int k = 0; k < D; ++k) s.momentum[k] += kin_[i].v[k];
-    if (!active_[i]) continue;
+    if (!kin_[i].active) continue;
     ++s.active;
     v2_active += v2;
     com += position(i);
@@ -452,7 +450,7 @@ Sample Engine<D>::sample() const {
   com /= static_cast<double>(s.active);
   Eigen::Matrix<double, D, D> gyration = Eigen::Matrix<double, D, D>::Zero();
   for (std::int32_t i : moved_) {
-    if (!active_[i]) continue;
+    if (!kin_[i].active) continue;
     const Vec<D> d = position(i) - com;
     gyration += d * d.transpose();
   }
@@ -490,7 +488,7 @@ void Engine<D>::snapshot(Snapshot& s) const {
     s.velocity[t].setZero();
     s.position[t].template head<D>() = x;
     s.velocity[t].template head<D>() = kin_[i].v;
-    s.active[t] = active_[i];
+    s.active[t] = kin_[i].active;
     s.first_collision[t] = first_collision_[i];
   }
 }

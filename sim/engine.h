@@ -145,6 +145,9 @@ class Engine final : public Simulation {
     double t;
     Vec<D> v;
     std::uint32_t counter;  // bumped at every velocity change
+    // Has ever moved / collided. Here and not in arrays of their own, because every collision
+    // sets them and the line is at hand: at N = 2e6 flag arrays miss the cache and the TLB.
+    bool moving = false, active = false;
   };
   HugeVector<Kinematics> kin_;
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
@@ -180,7 +183,6 @@ class Engine final : public Simulation {
   EventQueue queue_;
   Neighbours near_[2];  // scratch of the searches: the two spheres of a collision
 
-  std::vector<std::uint8_t> active_, moving_;
   std::vector<double> first_collision_;
   std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
 
