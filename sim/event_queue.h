@@ -35,7 +35,7 @@ class EventQueue {
 
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
-  bool contains(std::int32_t id) const { return entry_[id].bucket != kAbsent; }
+  bool contains(std::int32_t id) const { return entry_[id].prev != kAbsent; }
 
   // The particle with the earliest event (ties in no particular but a reproducible order).
   // The queue must not be empty.
@@ -138,17 +138,19 @@ class EventQueue {
   }
 
  private:
-  static constexpr std::int32_t kAbsent = -1, kNone = -1;
-  static constexpr std::int64_t kOverflow = -2;  // bucket of the entries beyond this year
+  static constexpr std::int32_t kNone = -1, kAbsent = -2;  // kAbsent: prev of an entry not queued
+  static constexpr std::int64_t kOverflow = -2;            // bucket of the entries beyond this year
   static constexpr std::size_t kMinBuckets = 64;
   static constexpr int kLongList = 64;  // entries: a bucket this full, or a sample this large
   static constexpr int kPeekBuckets = 16;
 
+  // 16 bytes, four to a cache line: the entries are read at random. An entry's bucket is not
+  // stored but recomputed from its time (bucket()), which gives the bucket it was linked into.
   struct Entry {
     double time = 0;
-    std::int64_t bucket = kAbsent;  // absolute bucket number, kOverflow, or kAbsent
-    std::int32_t next = kNone, prev = kNone;
+    std::int32_t next = kNone, prev = kAbsent;
   };
+  static_assert(sizeof(Entry) == 16);
 
   std::int64_t bucket_of(double t) const {
     // Events are never due before the bucket being walked (times only move forward), except in
@@ -156,16 +158,22 @@ class EventQueue {
     const double b = std::floor(t * inv_width_);
     return std::max(cur_, b < 9e18 ? static_cast<std::int64_t>(b) : year_end_);
   }
+  // The bucket that holds a queued entry due at t: that of bucket_of() when it was linked, since
+  // the walk never passes a non-empty bucket (so an entry clamped to the bucket then walked is
+  // still in the one walked now) and width and year change only when every entry is relinked.
+  std::int64_t bucket(double t) const {
+    const std::int64_t b = bucket_of(t);
+    return b < year_end_ ? b : kOverflow;
+  }
   std::int32_t& head_of(std::int64_t bucket) {
     return bucket == kOverflow ? overflow_ : head_[static_cast<std::size_t>(bucket) & mask_];
   }
 
   void link(std::int32_t id) {
     Entry& e = entry_[id];
-    const std::int64_t b = bucket_of(e.time);
-    e.bucket = b < year_end_ ? b : kOverflow;
-    (e.bucket == kOverflow ? overflow_count_ : calendar_count_)++;
-    std::int32_t& head = head_of(e.bucket);
+    const std::int64_t b = bucket(e.time);
+    (b == kOverflow ? overflow_count_ : calendar_count_)++;
+    std::int32_t& head = head_of(b);
     e.prev = kNone;
     e.next = head;
     if (head != kNone) entry_[head].prev = id;
@@ -174,13 +182,14 @@ class EventQueue {
 
   void unlink(std::int32_t id) {
     Entry& e = entry_[id];
-    (e.bucket == kOverflow ? overflow_count_ : calendar_count_)--;
+    const std::int64_t b = bucket(e.time);
+    (b == kOverflow ? overflow_count_ : calendar_count_)--;
     if (e.prev != kNone)
       entry_[e.prev].next = e.next;
     else
-      head_of(e.bucket) = e.next;
+      head_of(b) = e.next;
     if (e.next != kNone) entry_[e.next].prev = e.prev;
-    e.bucket = kAbsent;
+    e.prev = kAbsent;
   }
 
   void find_top() {
