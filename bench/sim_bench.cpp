@@ -57,7 +57,7 @@ std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
 }
 
 // The packing-0.5 gas at growing N: the rate falls as the particle records (64 B each, plus 32 B
-// of prediction and 24 B of queue entry) outgrow the caches. A core has 1 MiB of L2, which holds
+// of prediction and 16 B of queue entry) outgrow the caches. A core has 1 MiB of L2, which holds
 // them only at N = 9261; the steepest fall, between N = 27000 and 64000, is further out.
 std::vector<Figure> thermal3d_by_size() {
   std::vector<Figure> out;
