@@ -127,8 +127,8 @@ std::vector<Figure> kick3d_scaling(std::int64_t small_n, std::int64_t large_n, i
     double per_collision_alike() const { return 1e6 * run_alike / collisions_alike; }
   };
   Size sizes[2];
-  double lowest = std::numeric_limits<double>::infinity(),
-         highest = 0;  // the ratio of a single pair of runs
+  // The extremes of the ratio of a single pair of runs.
+  double lowest = std::numeric_limits<double>::infinity(), highest = 0;
   for (int r = 0; r < realisations; ++r) {
     std::unique_ptr<Simulation> sims[2];
     Size pair[2];
