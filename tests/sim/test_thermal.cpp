@@ -119,11 +119,11 @@ TEST(Thermal, HaffLawWithEnskogTime) {
   double sum = 0;
   for (int k = 0; k < kRealisations; ++k) sum += haff_time_over_enskog(k);
   const double mean = sum / kRealisations;
-  // 3%: over 24 realisations one gives 1.019 with a spread of 0.009, so the mean of 8 is known to
-  // 0.3%. The excess over Enskog grows with the fitting window (0.8% up to tau / 4) and not with
-  // N (the same at N = 1000): correlations build up as the gas cools, which Enskog's theory
-  // neglects; the cooling state's non-Gaussian a2 (~ -0.015 at r = 0.9, van Noije & Ernst 1998)
-  // adds < 0.5%.
+  // 3%: one realisation gives 1.02 with a spread of 0.01 (24 realisations), so the mean of 8 is
+  // known to 0.35%. The excess over Enskog grows with the fitting window (0.8% up to tau / 4) and
+  // not with N (the same at N = 1000): correlations build up as the gas cools, which Enskog's
+  // theory neglects; the cooling state's non-Gaussian a2 (~ -0.015 at r = 0.9, van Noije & Ernst
+  // 1998) adds < 0.5%.
   EXPECT_NEAR(mean, 1.0, 0.03) << "tau / tau_Enskog = " << mean;
 }
 
