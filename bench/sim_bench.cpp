@@ -77,30 +77,26 @@ PhysicsConfig kick_config(int dim, std::int64_t n) {
   return c;
 }
 
-std::vector<Figure> kick_figures(const Simulation& sim, double setup, double run,
-                                 const std::string& target) {
-  const auto& st = sim.stats();
-  return {
-      {"setup_cpu_seconds", setup, "s", ""},
-      {"run_cpu_seconds", run, "s", target},
-      {"collisions", static_cast<double>(st.collisions), "", ""},
-      {"events", static_cast<double>(st.events), "", ""},
-      {"active", static_cast<double>(sim.sample().active), "", ""},
-      {"collisions_per_cpu_second", static_cast<double>(st.collisions) / run, "1/s", ""},
-      {"cpu_microseconds_per_collision", 1e6 * run / static_cast<double>(st.collisions), "us", ""},
-      {"cpu_microseconds_per_event", 1e6 * run / static_cast<double>(st.events), "us", ""},
-      {"crossings_per_collision",
-       static_cast<double>(st.crossings) / static_cast<double>(st.collisions), "", ""},
-      {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
-}
-
 std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
   const PhysicsConfig c = kick_config(dim, n);
   const double cpu0 = cpu_seconds();
   auto sim = make_simulation(c);
   const double cpu1 = cpu_seconds();
   sim->run_until(c.t_max);
-  return kick_figures(*sim, cpu1 - cpu0, cpu_seconds() - cpu1, target);
+  const double run = cpu_seconds() - cpu1;
+  const auto& st = sim->stats();
+  return {
+      {"setup_cpu_seconds", cpu1 - cpu0, "s", ""},
+      {"run_cpu_seconds", run, "s", target},
+      {"collisions", static_cast<double>(st.collisions), "", ""},
+      {"events", static_cast<double>(st.events), "", ""},
+      {"active", static_cast<double>(sim->sample().active), "", ""},
+      {"collisions_per_cpu_second", static_cast<double>(st.collisions) / run, "1/s", ""},
+      {"cpu_microseconds_per_collision", 1e6 * run / static_cast<double>(st.collisions), "us", ""},
+      {"cpu_microseconds_per_event", 1e6 * run / static_cast<double>(st.events), "us", ""},
+      {"crossings_per_collision",
+       static_cast<double>(st.crossings) / static_cast<double>(st.collisions), "", ""},
+      {"overlaps", static_cast<double>(st.overlaps), "", "0"}};
 }
 
 // Target (d): the same 3D kick at N = 2e5 and 2e6, and the ratio of their costs per collision.
