@@ -112,7 +112,7 @@ std::vector<Figure> kick(int dim, std::int64_t n, const std::string& target) {
 // comparison of N = 2e6 with 2e7 (box 431) has no such mismatch: both blasts stay whole.
 //
 // How the small box refills is chaotic: its collisions range from 4.7e6 to 6.7e6 between
-// realisations, and the ratio of one pair of runs from 1.16 to 1.24. So the figures are those of
+// realisations, and the ratio of one pair of runs from 1.13 to 1.24. So the figures are those of
 // an ensemble of realisations (CPU time over collisions, summed), with each pair's extremes.
 std::vector<Figure> kick3d_scaling(std::int64_t small_n, std::int64_t large_n, int realisations) {
   constexpr double kAlike = 2e4;
