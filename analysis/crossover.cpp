@@ -5,6 +5,7 @@
 
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/rng.h"
 
 namespace gs {
 namespace {
@@ -85,6 +86,34 @@ Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
   c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
   c.found = true;
   return c;
+}
+
+CrossoverDraws crossover_draws(std::span<const double> t,
+                               std::span<const std::vector<double>> curves,
+                               const SlopeCrossoverOptions& o, int resamples, std::uint64_t seed,
+                               std::uint64_t key) {
+  CrossoverDraws out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (curves.size() < 2) return out;
+  Rng rng(seed, key, Stream::Bootstrap);
+  std::vector<std::size_t> draw(curves.size());
+  for (int b = 0; b < resamples; ++b) {
+    for (auto& x : draw) x = std::size_t(rng.below(curves.size()));
+    std::vector<double> mean(t.size(), 0.0);
+    for (std::size_t k : draw)
+      for (std::size_t i = 0; i < t.size(); ++i) mean[i] += curves[k][i] / double(draw.size());
+    const Crossover c1 = crossover_enter(t, mean, o);
+    out.enter.push_back(c1.found ? c1.time : nan);
+    double c2 = nan;
+    if (c1.found) {
+      SlopeCrossoverOptions late = o;
+      late.t_lo = c1.time;
+      const Crossover x = crossover_leave(t, mean, late);
+      if (x.found) c2 = x.time;
+    }
+    out.leave.push_back(c2);
+  }
+  return out;
 }
 
 double crossover_intersection(const PowerLawFit& early, const PowerLawFit& late) {

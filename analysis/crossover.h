@@ -13,9 +13,11 @@
 // slope rule gives a fixed multiple of t_c, so exponents such as phi1 come out right whatever the
 // tolerance; it needs no early-time fit, which for small r has no points. The intersection of
 // early and late power-law fits is given as an alternative.
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "analysis/power_law.h"
 
@@ -39,6 +41,17 @@ Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
                           const SlopeCrossoverOptions& options);  // t_c1
 Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
                           const SlopeCrossoverOptions& options);  // t_c2
+
+// t_c1 and t_c2 (the latter searched after the former) of the mean of realisations drawn with
+// replacement, `resamples` times (gs::Rng, Stream::Bootstrap, keyed by seed and key): NaN where a
+// draw finds none. For bootstrap intervals of phi1 and phi2.
+struct CrossoverDraws {
+  std::vector<double> enter, leave;
+};
+CrossoverDraws crossover_draws(std::span<const double> t,
+                               std::span<const std::vector<double>> realisations,
+                               const SlopeCrossoverOptions& options, int resamples,
+                               std::uint64_t seed, std::uint64_t key);
 
 // Where two power laws a1 t^b1 and a2 t^b2 meet: (a2 / a1)^(1 / (b1 - b2)). NaN if parallel.
 double crossover_intersection(const PowerLawFit& early, const PowerLawFit& late);

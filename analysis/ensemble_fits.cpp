@@ -1,5 +1,6 @@
 #include "analysis/ensemble_fits.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/collapse.h"
@@ -9,8 +10,44 @@
 namespace gs {
 namespace {
 
-constexpr double kStartActive = 20;   // automatic windows start once <N_t> reaches this
-constexpr double kLateDecades = 1.5;  // automatic windows lie within the last 1.5 decades
+constexpr double kStartActive = 20;  // local slopes are searched for plateaus once <N_t> >= 20
+
+std::vector<std::vector<double>> curves_of(const EnsembleSums& sums, std::size_t q) {
+  std::vector<std::vector<double>> out;
+  for (const auto& [k, c] : sums.curves()) out.push_back(c[q]);
+  return out;
+}
+
+// dR/dt by central differences on the grid; NaN at the ends.
+std::vector<double> derivative(std::span<const double> t, std::span<const double> y) {
+  std::vector<double> d(t.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 1; i + 1 < t.size(); ++i)
+    d[i] = (y[i + 1] - y[i - 1]) / (t[i + 1] - t[i - 1]);
+  return d;
+}
+
+std::string window_text(const Window& w) {
+  return "[" + format_number(w.t_lo) + ", " + format_number(w.t_hi) + "]";
+}
+
+// alpha from an exponent x of the quantity: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2),
+// R ~ t^alpha, dR/dt ~ t^(alpha - 1).
+void implied_alpha(ExponentFit& e, int d, double half) {
+  const double x = e.fit.exponent;
+  if (e.quantity == "N_t") {
+    e.alpha = x / d;
+    e.alpha_uncertainty = half / d;
+  } else if (e.quantity == "E_t") {
+    e.alpha = (x + 2) / (d + 2);
+    e.alpha_uncertainty = half / (d + 2);
+  } else if (e.quantity == "R_t" || e.quantity == "R_front") {
+    e.alpha = x;
+    e.alpha_uncertainty = half;
+  } else if (e.quantity == "dR_front/dt") {
+    e.alpha = x + 1;
+    e.alpha_uncertainty = half;
+  }
+}
 
 }  // namespace
 
@@ -25,9 +62,29 @@ void check_window(const EnsembleSpec& spec, const Window& w) {
                     format_number(t.back()) + "]");
 }
 
+double EnsembleFits::last_scalar(const char* name) const {
+  for (std::size_t k = 0; k < kSnapshotScalars.size(); ++k)
+    if (std::string(kSnapshotScalars[k]) == name && k < last_scalars.size()) return last_scalars[k];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double EnsembleFits::last_scalar_sem(const char* name) const {
+  for (std::size_t k = 0; k < kSnapshotScalars.size(); ++k)
+    if (std::string(kSnapshotScalars[k]) == name && k < last_scalars_sem.size())
+      return last_scalars_sem[k];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+const ExponentFit* find_exponent(const EnsembleFits& f, const std::string& quantity) {
+  for (const auto& e : f.exponents)
+    if (e.quantity == quantity) return &e;
+  return nullptr;
+}
+
 EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
   const EnsembleSpec& spec = sums.spec();
   const int d = spec.physics.dim;
+  const bool elastic = spec.physics.restitution >= 1;
   const double a = theory_alpha(spec.physics);
   EnsembleFits f;
   f.alpha_theory = a;
@@ -41,72 +98,99 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
       break;
     }
 
-  const std::array<double, 4> theory = {a * d, a * d + 2 * a - 2, a, a - 1};
-  const std::array<const char*, 4> names = {"N_t", "E_t", "R_t", "v_t"};
-  for (std::size_t q = 0; q < kFittedColumns.size(); ++q) {
+  struct Quantity {
+    const char* quantity;
+    int curve;  // index into kCurveColumns; -1: front speed
+    double theory;
+    const char* source;
+  };
+  const char* rule =
+      elastic ? "scaling theory, alpha = 2/(d+2)" : "scaling theory, alpha = 1/(d+1)";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Quantity> quantities = {
+      {"N_t", 0, a * d, rule},
+      {"E_t", 1, a * d + 2 * a - 2, elastic ? "energy conservation" : rule},
+      {"R_t", 2, a, rule},
+      {"R_front", 5, a, rule},
+      {"dR_front/dt", -1, a - 1, rule},
+      {"C_t", 4, elastic ? 2.0 * (d + 1) / (d + 2) : nan,
+       elastic ? "Antal, Krapivsky, Redner 2008: collisions ~ t^(2(d+1)/(d+2))" : ""}};
+
+  for (std::size_t q = 0; q < quantities.size(); ++q) {
+    const auto& qu = quantities[q];
     ExponentFit e;
-    e.column = kFittedColumns[q];
-    e.quantity = names[q];
-    e.theory = theory[q];
-    const auto& y = ts.column(e.column);
-    try {
-      Window w;
-      if (o.window) {
-        w = *o.window;
-      } else {
-        // The asymptotic regime is the late one: the search is confined to the last
-        // kLateDecades, so that a transient plateau (e.g. N_t ~ t^1 before the band forms in 3D)
-        // cannot win by being long. No plateau there: the last decade, said so in the note.
-        AutoWindowOptions ao;
-        ao.t_min = std::max(t_start, t.back() * std::pow(10.0, -kLateDecades));
-        try {
-          w = auto_window(t, y, ao);
-        } catch (const UserError&) {
-          w = {std::max(t_start, t.back() / 10), t.back()};
-          e.note =
-              "the local slope drifts by more than +-0.05 over the last 1.5 decades; fit over "
-              "the last decade";
-        }
+    e.quantity = qu.quantity;
+    e.column = qu.curve >= 0 ? kCurveColumns[std::size_t(qu.curve)] : "front_speed";
+    e.theory = qu.theory;
+    e.theory_source = qu.source;
+    std::vector<std::vector<double>> curves;
+    if (qu.curve >= 0) {
+      curves = curves_of(sums, std::size_t(qu.curve));
+    } else {
+      for (const auto& c : curves_of(sums, 5)) curves.push_back(derivative(t, c));
+    }
+    SlopeBandOptions so;
+    so.resamples = o.band_resamples;
+    so.seed = spec.physics.seed;
+    so.key = 100 + q;
+    e.slope = local_slope_band(t, curves, so);
+    PlateauOptions po = o.plateau;
+    po.t_min = std::max(po.t_min, t_start);
+    Window w;
+    if (o.window) {
+      PlateauOptions inside = po;
+      inside.t_min = std::max(po.t_min, o.window->t_lo);
+      inside.t_max = std::min(po.t_max, o.window->t_hi);
+      e.plateau = find_plateau(e.slope, inside);
+      if (!e.plateau.found) {
+        const Plateau anywhere = find_plateau(e.slope, po);
+        throw UserError(
+            "--window " + format_number(o.window->t_lo) + "," + format_number(o.window->t_hi) +
+            ": the local slope of " + e.quantity + " has no plateau inside it; " +
+            (anywhere.found ? "it plateaus over " + window_text(anywhere.window) : anywhere.note));
       }
-      if (sums.count() >= 2) {
-        std::vector<std::vector<double>> curves;
-        for (const auto& [k, c] : sums.curves()) curves.push_back(c[q]);
+      w = *o.window;
+    } else {
+      e.plateau = find_plateau(e.slope, po);
+      if (!e.plateau.found) {
+        e.note = e.plateau.note;
+        implied_alpha(e, d, nan);
+        f.exponents.push_back(std::move(e));
+        continue;
+      }
+      w = e.plateau.window;
+    }
+    try {
+      if (curves.size() >= 2) {
         BootstrapOptions bo;
         bo.resamples = o.resamples;
         bo.seed = spec.physics.seed;
         bo.key = q + 1;
         e.fit = fit_power_law_bootstrap(t, curves, w, bo);
       } else {
-        e.fit = fit_power_law(t, y, w);
+        e.fit = fit_power_law(t, curves.front(), w);
       }
     } catch (const UserError& err) {
       if (o.window) throw;  // a window the user gave must fit
       e.note = err.what();
     }
-    const double x = e.fit.exponent;
     const double half =
         e.fit.confidence > 0 ? 0.5 * (e.fit.ci_hi - e.fit.ci_lo) : e.fit.standard_error;
-    // alpha from each relation: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2), R ~ t^alpha, v ~
-    // t^(alpha - 1).
-    switch (q) {
-      case 0:
-        e.alpha = x / d;
-        e.alpha_uncertainty = half / d;
-        break;
-      case 1:
-        e.alpha = (x + 2) / (d + 2);
-        e.alpha_uncertainty = half / (d + 2);
-        break;
-      case 2:
-        e.alpha = x;
-        e.alpha_uncertainty = half;
-        break;
-      default:
-        e.alpha = x + 1;
-        e.alpha_uncertainty = half;
-        break;
-    }
-    f.exponents.push_back(e);
+    implied_alpha(e, d, half);
+    f.exponents.push_back(std::move(e));
+  }
+
+  // v_rms^2 = 2 E / N per realisation (unit masses; the particles at rest carry no energy).
+  {
+    double worst = 0;
+    bool any = false;
+    for (const auto& [k, c] : sums.curves())
+      for (std::size_t i = 0; i < t.size(); ++i)
+        if (c[0][i] >= kStartActive && c[1][i] > 0) {
+          worst = std::max(worst, std::fabs(c[3][i] * c[3][i] * c[0][i] / (2 * c[1][i]) - 1));
+          any = true;
+        }
+    if (any) f.speed_identity_error = worst;
   }
 
   SlopeCrossoverOptions co;
@@ -115,10 +199,18 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
   const auto& n = ts.column("active");
   f.tc1 = crossover_enter(t, n, co);
   if (f.tc1.found) {
-    co.t_lo = f.tc1.time;
-    f.tc2 = crossover_leave(t, n, co);
+    SlopeCrossoverOptions late = co;
+    late.t_lo = f.tc1.time;
+    f.tc2 = crossover_leave(t, n, late);
   } else {
     f.tc2.note = "t_c1 not found";
+  }
+  // The same rules on resampled ensembles (realisations drawn with replacement).
+  {
+    const CrossoverDraws draws =
+        crossover_draws(t, curves_of(sums, 0), co, o.band_resamples, spec.physics.seed, 200);
+    f.tc1_draws = draws.enter;
+    f.tc2_draws = draws.leave;
   }
 
   const auto& an = ts.column("anisotropy");
@@ -128,14 +220,14 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
 
   const auto& snaps = sums.snapshots();
   if (!snaps.empty() && sums.count() > 0) {
-    const auto m = snaps.back().scalars.mean();
-    const auto se = snaps.back().scalars.standard_error();
-    f.packing_typical = m[0];
-    f.packing_typical_sem = se[0];
-    f.packing_upper = m[1];
-    f.packing_upper_sem = se[1];
-    f.inner_outer_ratio = m[4];
-    f.inner_outer_ratio_sem = se[4];
+    f.last_scalars = snaps.back().scalars.mean();
+    f.last_scalars_sem = snaps.back().scalars.standard_error();
+    f.packing_typical = f.last_scalar("packing_typical");
+    f.packing_typical_sem = f.last_scalar_sem("packing_typical");
+    f.packing_upper = f.last_scalar("packing_upper");
+    f.packing_upper_sem = f.last_scalar_sem("packing_upper");
+    f.inner_outer_ratio = f.last_scalar("inner_outer_ratio");
+    f.inner_outer_ratio_sem = f.last_scalar_sem("inner_outer_ratio");
   }
   if (snaps.size() >= 2 && sums.count() > 0) {
     std::vector<Curve> cr, cv;

@@ -1,61 +1,83 @@
 #pragma once
 // The numbers an ensemble is for (Jabeen, Rajesh, Ray, EPL 2010):
-//  - exponents of N_t ~ t^(alpha d), E_t ~ t^(alpha d + 2 alpha - 2), R_t ~ t^alpha and
-//    v_t ~ t^(alpha - 1): a least-squares line of ln <y> against ln t over a scaling window (given,
-//    or the longest range within the last 1.5 decades, and after the mean N_t reaches 20, where
-//    the local slope of <y> stays within +-0.05; without one, the last decade), with a 95%
-//    percentile interval from 1000 bootstrap resamples of the
-//    realisations (M >= 2); each gives an estimate of alpha to compare with 1/(d+1) (r < 1) or
-//    2/(d+2) (r = 1);
+//  - effective exponents (analysis/effective_exponent.h): the local slope d ln <X> / d ln t with
+//    a bootstrap band, for N_t ~ t^(alpha d), E_t ~ t^(alpha d + 2 alpha - 2), R_t (rms) and the
+//    front radius ~ t^alpha, the front speed dR_front/dt ~ t^(alpha - 1) and the collision count
+//    (~ t^(2(d+1)/(d+2)) for r = 1, Antal, Krapivsky, Redner 2008); each fitted as a
+//    least-squares line of ln <X> against ln t on the plateau of its local slope (found after
+//    <N_t> reaches 20), with a 95% percentile interval from 1000 bootstrap resamples of the
+//    realisations (M >= 2), or "no plateau within the run" and no fit;
+//  - v_t is not fitted: v_rms^2 = 2 E_t / N_t holds exactly (every moving particle is active), so
+//    its exponent repeats those of E_t and N_t; the identity is checked instead;
 //  - t_c1: the time from which the local slope of <N_t> stays within 10% of alpha d
 //    (analysis/crossover.h, slope rule); t_c2: the later time from which it leaves that band
-//    for good, if the data reach it;
+//    for good, if the data reach it; each with bootstrap draws for the intervals of phi1, phi2;
 //  - collapse quality Q (analysis/collapse.h) of t^alpha P(R,t) against R t^-alpha and of
 //    t^(alpha-1) P(v,t) against v t^(1-alpha) over the snapshot times;
-//  - A(t) at the last sample, band packing (typical and upper) and the inner-edge speed ratio at
-//    the last snapshot time.
+//  - A(t) at the last sample and the band measures at the last snapshot time.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/crossover.h"
+#include "analysis/effective_exponent.h"
 #include "analysis/ensemble_sums.h"
 #include "analysis/power_law.h"
 
 namespace gs {
 
 struct FitOptions {
-  std::optional<Window> window;  // none: automatic per quantity
-  int resamples = 1000;
+  // Given by the user: every fitted quantity must have a plateau of its local slope inside it
+  // (UserError naming where the slope plateaus otherwise), and the fit covers all of it.
+  std::optional<Window> window;
+  int resamples = 1000;      // of the fits
+  int band_resamples = 200;  // of the local-slope bands and the crossover draws
+  PlateauOptions plateau;    // t_min is set from <N_t> >= 20
 };
 
 // Throws UserError naming --window unless t_lo < t_hi and the window lies in the sampled range.
 void check_window(const EnsembleSpec& spec, const Window& w);
 
 struct ExponentFit {
-  std::string column;    // timeseries column: active, energy, radius_rms, speed_rms
-  std::string quantity;  // N_t, E_t, R_t, v_t
-  double theory = 0;     // exponent predicted with the theory's alpha
-  PowerLawFit fit;       // NaN exponent when no window was found
-  // alpha implied by the exponent and its interval (half width of the bootstrap interval, or
-  // the least-squares error for a single realisation).
-  double alpha = 0, alpha_uncertainty = 0;
+  std::string column;    // a kCurveColumns name, or "front_speed"
+  std::string quantity;  // N_t, E_t, R_t, R_front, dR_front/dt, C_t
+  double theory = std::numeric_limits<double>::quiet_NaN();  // NaN: no prediction
+  std::string theory_source;
+  SlopeBand slope;
+  Plateau plateau;
+  PowerLawFit fit;  // NaN exponent when there is no plateau
+  // alpha implied by the exponent and its interval (half width of the bootstrap interval, or the
+  // least-squares error for a single realisation); NaN for the collision count.
+  double alpha = std::numeric_limits<double>::quiet_NaN();
+  double alpha_uncertainty = std::numeric_limits<double>::quiet_NaN();
   std::string note;  // why there is no fit
 };
 
 struct EnsembleFits {
   double alpha_theory = 0;
   std::vector<ExponentFit> exponents;
+  // Largest |v_rms^2 N_t / (2 E_t) - 1| over realisations and samples with N_t >= 20.
+  double speed_identity_error = std::numeric_limits<double>::quiet_NaN();
   Crossover tc1, tc2;
+  // t_c1 and t_c2 of resampled ensembles (NaN where a draw does not find one), for intervals.
+  std::vector<double> tc1_draws, tc2_draws;
   double collapse_radius = std::numeric_limits<double>::quiet_NaN();
   double collapse_speed = std::numeric_limits<double>::quiet_NaN();
   std::string collapse_note;
-  double anisotropy = 0, anisotropy_sem = 0;            // at the last sample
+  double anisotropy = 0, anisotropy_sem = 0;  // at the last sample
+  // Means and standard errors over realisations of the snapshot scalars at the last snapshot
+  // time, by kSnapshotScalars name.
+  std::vector<double> last_scalars, last_scalars_sem;
+  double last_scalar(const char* name) const;
+  double last_scalar_sem(const char* name) const;
   double packing_typical = 0, packing_typical_sem = 0;  // at the last snapshot time
   double packing_upper = 0, packing_upper_sem = 0;
   double inner_outer_ratio = 0, inner_outer_ratio_sem = 0;
 };
 
 EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& options);
+
+// The exponent fit of `quantity` (e.g. "N_t"), or nullptr.
+const ExponentFit* find_exponent(const EnsembleFits& f, const std::string& quantity);
 
 }  // namespace gs

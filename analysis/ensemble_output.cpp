@@ -143,11 +143,15 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  ],\n";
   j << "  \"exponent_definition\": "
     << json_string(
-           "least-squares slope of ln <y> vs ln t over the window (automatic: longest range "
-           "within the last 1.5 decades, after <N_t> >= 20, where the local slope stays "
-           "within +-0.05, else the last decade); interval: 95% percentile bootstrap over "
-           "realisations")
+           "least-squares slope of ln <y> vs ln t over the window (automatic: the plateau of "
+           "the local slope, analysis/effective_exponent.h: the latest window of >= 0.5 "
+           "decades, after <N_t> >= 20, in which one exponent lies within every sample's "
+           "slope +- (0.02 + half its bootstrap band); none: no fit); interval: 95% "
+           "percentile bootstrap over realisations")
     << ",\n";
+  // v_t is no fit of its own: v_rms^2 = 2 E / N holds exactly (analysis/ensemble_fits.h).
+  j << "  \"v_t\": {\"identity\": \"v_rms^2 = 2 E_t / N_t\", \"max_relative_deviation\": "
+    << json_number(f.speed_identity_error) << "},\n";
   j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
   j << "  \"crossover_definition\": "

@@ -23,8 +23,8 @@ void EnsembleSums::add(const Realisation& r, const std::string& source) {
       throw UserError(source + ": snapshot time " + format_number(r.snapshots[k].t) +
                       " is not the ensemble's " + format_number(snaps_[k].t));
   Curves c;
-  for (std::size_t q = 0; q < kFittedColumns.size(); ++q)
-    c[q] = r.timeseries.column(kFittedColumns[q]);
+  for (std::size_t q = 0; q < kCurveColumns.size(); ++q)
+    c[q] = r.timeseries.column(kCurveColumns[q]);
   series_.add(r.index, r.timeseries, source);  // checks index, columns and grid
   curves_.emplace(r.index, std::move(c));
   for (std::size_t k = 0; k < snaps_.size(); ++k) {
@@ -37,10 +37,20 @@ void EnsembleSums::add(const Realisation& r, const std::string& source) {
     auto frac = [](const Histogram& h) {
       return h.samples ? double(h.outside) / double(h.samples) : 0.0;
     };
-    const std::array<double, kSnapshotScalars.size()> v = {
-        m.band.typical,      m.band.upper,   m.band.mean,
-        m.inner.correlation, m.inner.ratio,  m.inner.inner_speed,
-        m.inner.outer_speed, frac(m.radius), frac(m.speed)};
+    const std::array<double, kSnapshotScalars.size()> v = {m.band.typical,
+                                                           m.band.upper,
+                                                           m.band.mean,
+                                                           m.inner.correlation,
+                                                           m.inner.ratio,
+                                                           m.inner.inner_speed,
+                                                           m.inner.outer_speed,
+                                                           frac(m.radius),
+                                                           frac(m.speed),
+                                                           m.measures.front.radius,
+                                                           m.measures.front.peak_density,
+                                                           m.measures.densest_cell,
+                                                           m.measures.local_median,
+                                                           m.measures.local_upper};
     s.scalars.add(v);
   }
 }

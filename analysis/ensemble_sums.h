@@ -3,8 +3,8 @@
 // added into exact accumulators (analysis/ensemble.h), so that the result does not depend on
 // which thread or which cluster job ran which realisation, nor on the order of merging.
 //
-// The four curves the exponent fits bootstrap over (N_t, E_t, R_t, v_t) are also kept per
-// realisation, keyed by index: ~4 x (samples on the grid) doubles each, a few kB.
+// The curves the local slopes and fits bootstrap over (kCurveColumns) are also kept per
+// realisation, keyed by index: ~6 x (samples on the grid) doubles each, a few kB.
 #include <array>
 #include <cstdint>
 #include <map>
@@ -16,18 +16,20 @@
 
 namespace gs {
 
-// The time-series columns whose exponents are fitted, in the order of EnsembleSums::Curves.
-inline constexpr std::array<const char*, 4> kFittedColumns = {"active", "energy", "radius_rms",
-                                                              "speed_rms"};
+// The time-series columns kept per realisation for bootstrapping local slopes and fits, in the
+// order of EnsembleSums::Curves.
+inline constexpr std::array<const char*, 6> kCurveColumns = {
+    "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
-inline constexpr std::array<const char*, 9> kSnapshotScalars = {
-    "packing_typical",   "packing_upper",      "packing_mean",
-    "inner_correlation", "inner_outer_ratio",  "inner_speed",
-    "outer_speed",       "R_outside_fraction", "v_outside_fraction"};
+inline constexpr std::array<const char*, 14> kSnapshotScalars = {
+    "packing_typical",      "packing_upper",      "packing_mean",       "inner_correlation",
+    "inner_outer_ratio",    "inner_speed",        "outer_speed",        "R_outside_fraction",
+    "v_outside_fraction",   "front_radius",       "shell_peak_density", "packing_densest_cell",
+    "packing_local_median", "packing_local_upper"};
 
 class EnsembleSums {
  public:
-  using Curves = std::array<std::vector<double>, kFittedColumns.size()>;
+  using Curves = std::array<std::vector<double>, kCurveColumns.size()>;
   struct SnapshotSums {
     double t = 0;
     HistogramAverage radius, speed, packing;

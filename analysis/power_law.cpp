@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "analysis/quantile.h"
 #include "sim/error.h"
 #include "sim/format.h"
 #include "sim/rng.h"
@@ -222,12 +223,7 @@ PowerLawFit fit_power_law_bootstrap(std::span<const double> t,
     exponents.push_back(fit_range(t, mean, first, last, w).exponent);
   }
   std::sort(exponents.begin(), exponents.end());
-  auto quantile = [&](double q) {
-    const double pos = q * double(exponents.size() - 1);
-    const auto i = std::size_t(std::floor(pos));
-    const double f = pos - double(i);
-    return i + 1 < exponents.size() ? exponents[i] * (1 - f) + exponents[i + 1] * f : exponents[i];
-  };
+  auto quantile = [&](double q) { return sorted_quantile(exponents, q); };
   fit.ci_lo = quantile((1 - o.confidence) / 2);
   fit.ci_hi = quantile((1 + o.confidence) / 2);
   fit.confidence = o.confidence;

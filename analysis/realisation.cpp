@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "sim/engine.h"
@@ -81,7 +82,12 @@ const std::vector<std::string> kScalarColumns = {"t",
                                                  "inner_median_radius",
                                                  "inner_speed",
                                                  "outer_speed",
-                                                 "inner_outer_ratio"};
+                                                 "inner_outer_ratio",
+                                                 "front_radius",
+                                                 "shell_peak_density",
+                                                 "packing_densest_cell",
+                                                 "packing_local_median",
+                                                 "packing_local_upper"};
 
 }  // namespace
 
@@ -230,7 +236,8 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   PackingOptions po;
   po.binning = packing_binning(spec);
   m.band = band_packing(s, po);  // counts the particles at rest in the band's cells too
-  m.packing = m.band.distribution;
+  m.packing = weighted_cell_histogram(m.band.fraction, m.band.active, po.binning);
+  m.measures = measure_band(s, spec.physics.density);
   m.band.fraction.clear();
   m.band.active.clear();
   m.inner = inner_edge_speed(active);
@@ -246,7 +253,11 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
   out = Realisation{};
   out.index = index;
   out.timeseries.names = recorder.columns();
-  out.timeseries.columns.assign(recorder.columns().size(), {});
+  out.timeseries.names.push_back("front_radius");
+  out.timeseries.columns.assign(out.timeseries.names.size(), {});
+  const auto active_column =
+      std::size_t(std::find(recorder.columns().begin(), recorder.columns().end(), "active") -
+                  recorder.columns().begin());
   std::size_t next_snap = 0;
   Snapshot s;  // one buffer for every snapshot time: at 2e6 spheres a fresh one is 130 MB
   for (double t : sample_times(spec)) {
@@ -255,10 +266,17 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
       sim->run_until(std::min(t, sim->time() + std::max(1.0, 0.05 * sim->time())));
       if (stop_requested()) return false;
     }
-    out.timeseries.add_row(recorder.row(*sim));
+    std::vector<double> row = recorder.row(*sim);
+    double front = std::numeric_limits<double>::quiet_NaN();
+    if (row[active_column] >= kFrontMinActive) {
+      sim->snapshot(s);
+      front = measure_front(s, c.density).radius;
+    }
+    row.push_back(front);
+    out.timeseries.add_row(row);
     if (next_snap < spec.snapshot_times.size() &&
         std::abs(spec.snapshot_times[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {
-      sim->snapshot(s);
+      if (row[active_column] < kFrontMinActive) sim->snapshot(s);
       out.snapshots.push_back(measure_snapshot(spec, s));
       out.snapshots.back().t = spec.snapshot_times[next_snap];
       if (on_snapshot) on_snapshot(index, s);
@@ -308,7 +326,12 @@ void write_realisation(const std::filesystem::path& dir, const Realisation& r) {
                                      m.inner.median_radius,
                                      m.inner.inner_speed,
                                      m.inner.outer_speed,
-                                     m.inner.ratio};
+                                     m.inner.ratio,
+                                     m.measures.front.radius,
+                                     m.measures.front.peak_density,
+                                     m.measures.densest_cell,
+                                     m.measures.local_median,
+                                     m.measures.local_upper};
     scalars.add_row(row);
   }
   write_csv(dist, dir / "distributions.csv");
@@ -361,6 +384,11 @@ Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t ind
     m.inner.inner_speed = s("inner_speed");
     m.inner.outer_speed = s("outer_speed");
     m.inner.ratio = s("inner_outer_ratio");
+    m.measures.front.radius = s("front_radius");
+    m.measures.front.peak_density = s("shell_peak_density");
+    m.measures.densest_cell = s("packing_densest_cell");
+    m.measures.local_median = s("packing_local_median");
+    m.measures.local_upper = s("packing_local_upper");
     r.snapshots.push_back(std::move(m));
     first += bins;
   }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/band_measures.h"
 #include "analysis/table.h"
 #include "sim/config.h"
 #include "sim/histogram.h"
@@ -54,14 +55,22 @@ struct SnapshotMeasures {
   double t = 0;
   Histogram radius, speed;  // P(R,t), P(v,t)
   RadialProfile profile;    // on the radius binning
-  Histogram packing;        // distribution of the packing fraction of band cells
-  BandPacking band;         // typical/upper/mean (fraction lists are not kept)
+  // Distribution of the packing fraction of band cells, each cell weighted by its active
+  // particles (analysis/band_measures.h).
+  Histogram packing;
+  BandPacking band;  // typical/upper/mean (fraction lists are not kept)
+  BandMeasures measures;
   InnerEdge inner;
 };
 
+// Active particles a realisation needs before its front radius is measured; earlier samples of
+// the front_radius column are NaN (there is no band to have a front).
+inline constexpr double kFrontMinActive = 50;
+
 struct Realisation {
   std::uint64_t index = 0;
-  Table timeseries;                         // the columns of Recorder on the shared grid
+  // The columns of Recorder on the shared grid, then front_radius (analysis/band_measures.h).
+  Table timeseries;
   std::vector<SnapshotMeasures> snapshots;  // one per spec snapshot time
 };
 

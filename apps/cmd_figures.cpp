@@ -1,6 +1,7 @@
 // `grainshock figures`: the paper's Figs. 1-5 (Jabeen, Rajesh, Ray, EPL 2010) and a report of
 // every measured number next to the paper's, from one ensemble per (d, r).
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,10 +9,11 @@
 #include <sstream>
 #include <thread>
 
-#include "analysis/crossover.h"
 #include "analysis/ensemble_output.h"
 #include "analysis/ensemble_runner.h"
 #include "analysis/json.h"
+#include "analysis/paper.h"
+#include "analysis/quantile.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/ensemble_cli.h"
@@ -42,6 +44,16 @@ struct FiguresOptions {
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::uint64_t seed = 1;
   int sample = 2;  // realisations per case for --estimate
+  std::string format = "png";
+};
+
+// Where figures go and in which formats.
+struct Out {
+  fs::path dir;
+  std::vector<std::string> formats;
+  std::string plot(const std::string& script_name, const std::string& script) const {
+    return run_gnuplot(dir, script_name, script, formats);
+  }
 };
 
 struct CaseResult {
@@ -49,26 +61,6 @@ struct CaseResult {
   EnsembleSums sums;
   EnsembleFits fits;
   double wall = 0;
-};
-
-// One entry of summary.json "comparisons".
-struct Comparison {
-  std::string quantity;
-  int d = 0;
-  double r = std::numeric_limits<double>::quiet_NaN();
-  double measured = std::numeric_limits<double>::quiet_NaN();
-  double uncertainty = std::numeric_limits<double>::quiet_NaN();
-  double theory = std::numeric_limits<double>::quiet_NaN();
-  std::string relation = "equal";  // equal | below
-  double tolerance = 0;
-  std::string source;  // where the theory value comes from
-  std::string note;
-  bool agrees() const {
-    if (!std::isfinite(measured)) return false;
-    const double u = std::isfinite(uncertainty) ? uncertainty : 0;
-    if (relation == "below") return measured - u < theory;
-    return std::fabs(measured - theory) <= std::max(u, tolerance);
-  }
 };
 
 std::string rtext(double r) {
@@ -131,25 +123,35 @@ std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
   return {};
 }
 
-// --- CSV and gnuplot scripts for Figs. 2-5 -------------------------------------------------------
+// --- CSV and gnuplot scripts ---------------------------------------------------------------------
 
 std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int d, bool elastic) {
   std::vector<const CaseResult*> out;
   for (const auto& c : all)
-    if (!c.plan->delta_scan && c.plan->spec.physics.dim == d &&
+    if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.dim == d &&
         (c.plan->spec.physics.restitution == 1.0) == elastic)
       out.push_back(&c);
   return out;
 }
 
-std::string fig2(const std::vector<CaseResult>& all, const fs::path& dir) {
+// Theory lines are told apart by dimension: d = 2 black dashes, d = 3 dark red dots-dashes.
+std::string theory_style(int d) {
+  return d == 2 ? "lw 2 dt 2 lc rgb 'black'" : "lw 2 dt 4 lc rgb '#a00000'";
+}
+
+std::string exponent_text(int d, bool energy) {
+  return std::string(energy ? "-" : "") + (d == 2 ? "2/3" : "3/4");
+}
+
+std::string fig2(const std::vector<CaseResult>& all, const Out& out) {
   Table t;
   for (const char* n : {"d", "r", "t", "t_paper", "A", "A_sem"}) t.add_column(n, {});
   std::string plot;
-  for (const auto& c : all) {
-    if (c.plan->spec.physics.dim != 2 || c.plan->delta_scan) continue;
-    const Table ts = c.sums.timeseries();
-    const double r = c.plan->spec.physics.restitution;
+  auto cases = cases_of(all, 2, false);
+  for (const CaseResult* c : cases_of(all, 2, true)) cases.push_back(c);
+  for (const CaseResult* c : cases) {
+    const Table ts = c->sums.timeseries();
+    const double r = c->plan->spec.physics.restitution;
     for (std::size_t i = 0; i < ts.rows(); ++i) {
       if (ts.column("active")[i] < 3) continue;  // no shape before the band has particles
       const std::vector<double> row = {2.0,
@@ -164,17 +166,17 @@ std::string fig2(const std::vector<CaseResult>& all, const fs::path& dir) {
             "'fig2_anisotropy.csv' skip 1 using ($2==" + rtext(r) +
             " ? $4 : 1/0):5:6 with yerrorlines title 'r = " + rtext(r) + "'";
   }
-  write_csv(t, dir / "fig2_anisotropy.csv");
-  std::string gp = gnuplot_preamble("fig2_anisotropy.png", 900, 650);
+  write_csv(t, out.dir / "fig2_anisotropy.csv");
+  std::string gp = gnuplot_preamble("fig2_anisotropy", 900, 650);
   gp +=
       "set title 'Fig. 2: anisotropy index A(t) in 2D (mean over realisations)'\n"
       "set logscale x\nset xlabel 't (paper units 1/(v_0 n^{1/d}))'\nset ylabel 'A(t)'\n"
       "set yrange [0:1]\nset key top right\n" +
       plot + "\n";
-  return run_gnuplot(dir, "fig2_anisotropy.gp", gp);
+  return out.plot("fig2_anisotropy.gp", gp);
 }
 
-std::string fig3(const std::vector<CaseResult>& all, const fs::path& dir) {
+std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
   Table t;
   for (const char* n : {"d", "r", "t", "t_paper", "N", "N_sem", "E", "E_sem"}) t.add_column(n, {});
   std::string plot_n, plot_e, theory;
@@ -182,6 +184,9 @@ std::string fig3(const std::vector<CaseResult>& all, const fs::path& dir) {
     for (const CaseResult* c : cases_of(all, d, false)) {
       const Table ts = c->sums.timeseries();
       const double r = c->plan->spec.physics.restitution;
+      // The paper's Fig. 3 shows r = 0.1, 0.5, 0.8; the other r are there for phi1 (fig6).
+      const int colour = r == 0.1 ? 1 : r == 0.5 ? 2 : r == 0.8 ? 3 : 0;
+      if (colour == 0) continue;
       for (std::size_t i = 0; i < ts.rows(); ++i) {
         const std::vector<double> row = {double(d),
                                          r,
@@ -194,11 +199,13 @@ std::string fig3(const std::vector<CaseResult>& all, const fs::path& dir) {
         t.add_row(row);
       }
       const std::string sel = "($1==" + std::to_string(d) + " && $2==" + rtext(r) + " ? $4 : 1/0)";
-      const std::string title = "'d = " + std::to_string(d) + ", r = " + rtext(r) + "'";
+      // Colour by r, open points in 2D and filled ones in 3D.
+      const std::string title = " lc " + std::to_string(colour) + " pt " + (d == 2 ? "6" : "7") +
+                                " title 'd = " + std::to_string(d) + ", r = " + rtext(r) + "'";
       plot_n += std::string(plot_n.empty() ? "plot " : ", \\\n     ") +
-                "'fig3_active_energy.csv' skip 1 using " + sel + ":5 title " + title;
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":5" + title;
       plot_e += std::string(plot_e.empty() ? "plot " : ", \\\n     ") +
-                "'fig3_active_energy.csv' skip 1 using " + sel + ":7 title " + title;
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":7" + title;
     }
     // Theory lines through the last point of the r = 0.1 curve.
     const auto cs = cases_of(all, d, false);
@@ -214,35 +221,29 @@ std::string fig3(const std::vector<CaseResult>& all, const fs::path& dir) {
                     "E%d(x) = x < %.6g ? 1/0 : %.6g*(x/%.6g)**(%.6g)\n",
                     d, tp / 100, n, tp, a * d, d, tp / 100, e, tp, a * d + 2 * a - 2);
       theory += buf;
-      plot_n += ", \\\n     N" + std::to_string(d) +
-                "(x) with lines lw 2 dt 2 lc 'black' title 't^{" +
-                (d == 2 ? std::string("2/3") : std::string("3/4")) +
-                "} (theory, d = " + std::to_string(d) + ")'";
-      plot_e += ", \\\n     E" + std::to_string(d) +
-                "(x) with lines lw 2 dt 2 lc 'black' title 't^{-" +
-                (d == 2 ? std::string("2/3") : std::string("3/4")) +
-                "} (theory, d = " + std::to_string(d) + ")'";
+      const std::string ds = std::to_string(d);
+      plot_n += ", \\\n     N" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
+                exponent_text(d, false) + "} (theory, d = " + ds + ")'";
+      plot_e += ", \\\n     E" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
+                exponent_text(d, true) + "} (theory, d = " + ds + ")'";
     }
   }
-  write_csv(t, dir / "fig3_active_energy.csv");
-  std::string gp = gnuplot_preamble("fig3_active_energy.png", 1400, 600);
+  write_csv(t, out.dir / "fig3_active_energy.csv");
+  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 650);
   gp += theory;
   gp +=
       "set multiplot layout 1,2 title 'Fig. 3: mean active particles and kinetic energy (not "
       "shifted)'\n"
       "set samples 500\nset logscale xy\nset xlabel 't (paper units)'\nset format y '10^{%L}'\n"
-      "set title '(a) <N_t>'\nset ylabel '<N_t>'\n" +
-      plot_n + "\nset title '(b) <E_t>'\nset ylabel '<E_t>'\nset key bottom left\n" + plot_e +
+      "set format x '10^{%L}'\nset key font ',10'\n"
+      "set title '(a) ⟨N_t⟩'\nset ylabel '⟨N_t⟩'\n" +
+      plot_n + "\nset title '(b) ⟨E_t⟩'\nset ylabel '⟨E_t⟩'\nset key bottom left\n" + plot_e +
       "\nunset multiplot\n";
-  return run_gnuplot(dir, "fig3_active_energy.gp", gp);
+  return out.plot("fig3_active_energy.gp", gp);
 }
 
-std::string fig_collapse(const CaseResult& c, const fs::path& dir, const std::string& base,
-                         int fig) {
-  const Table d = [&] {
-    // distributions_mean.csv of the case, as written in its ensemble folder.
-    return read_csv(dir / "ensembles" / c.plan->name / "distributions_mean.csv");
-  }();
+std::string fig_collapse(const CaseResult& c, const Out& out, const std::string& base, int fig) {
+  const Table d = read_csv(out.dir / "ensembles" / c.plan->name / "distributions_mean.csv");
   Table t;
   for (const char* n : {"t", "t_paper", "x_R", "f1", "x_v", "f2"}) t.add_column(n, {});
   const auto& p = c.plan->spec.physics;
@@ -252,8 +253,7 @@ std::string fig_collapse(const CaseResult& c, const fs::path& dir, const std::st
                                      d.column("x_v")[i], d.column("f2")[i]};
     t.add_row(row);
   }
-  write_csv(t, dir / (base + ".csv"));
-  const double a = theory_alpha(p);
+  write_csv(t, out.dir / (base + ".csv"));
   std::string pr, pv;
   for (double ts : c.plan->spec.snapshot_times) {
     const std::string sel = "($1==" + format_number(ts) + " ? ";
@@ -264,243 +264,201 @@ std::string fig_collapse(const CaseResult& c, const fs::path& dir, const std::st
           sel + "$5 : 1/0):($6 > 0 ? $6 : 1/0) title " + title;
   }
   const std::string as = p.dim == 2 ? "1/3" : "1/4";
-  std::string gp = gnuplot_preamble(base + ".png", 1400, 600);
+  const std::string bs = p.dim == 2 ? "2/3" : "3/4";  // 1 - alpha
+  std::string gp = gnuplot_preamble(base, 1400, 600);
   gp += "set multiplot layout 1,2 title 'Fig. " + std::to_string(fig) + ": scaling collapse in " +
-        std::to_string(p.dim) + "D, r = " + rtext(p.restitution) + ", alpha = " + as +
+        std::to_string(p.dim) + "D, r = " + rtext(p.restitution) + ", α = " + as +
         " (times in paper units)'\n";
-  gp += "set title '(a) t^{alpha} P(R,t) against R t^{-alpha}'\nset xlabel 'R t^{-" + as +
+  gp += "set title '(a) t^{α} P(R,t) against R t^{-α}'\nset xlabel 'R t^{-" + as +
         "}'\nset ylabel 't^{" + as + "} P(R,t)'\nset key top left\n" + pr + "\n";
-  gp +=
-      "set title '(b) t^{alpha-1} P(v,t) against v t^{1-alpha}'\nset xlabel 'v t^{1-alpha}'\n"
-      "set ylabel 't^{alpha-1} P(v,t)'\nset logscale y\nset format y '10^{%L}'\nset key top "
-      "right\n" +
-      pv + "\n";
+  gp += "set title '(b) t^{α-1} P(v,t) against v t^{1-α}'\nset xlabel 'v t^{" + bs +
+        "}'\nset ylabel 't^{-" + bs +
+        "} P(v,t)'\nset logscale y\nset format y '10^{%L}'\nset key top right\n" + pv + "\n";
   gp += "unset multiplot\n";
-  (void)a;
-  return run_gnuplot(dir, base + ".gp", gp);
+  return out.plot(base + ".gp", gp);
 }
 
-std::string fig_crossover(const std::vector<CaseResult>& all, const fs::path& dir,
-                          std::vector<Comparison>& cmp, std::ostringstream& notes) {
-  Table t;
-  for (const char* n : {"d", "r", "one_minus_r2", "t_c1", "t_c1_paper"}) t.add_column(n, {});
-  std::string plot, fits;
-  for (int d : {2, 3}) {
-    std::vector<double> x, y;
-    for (const CaseResult* c : cases_of(all, d, false)) {
-      const double r = c->plan->spec.physics.restitution;
-      if (!c->fits.tc1.found) {
-        notes << "- t_c1 not found for d = " << d << ", r = " << rtext(r) << ": "
-              << c->fits.tc1.note << "\n";
-        continue;
-      }
-      x.push_back(1 - r * r);
-      y.push_back(c->fits.tc1.time);
-      const std::vector<double> row = {double(d), r, 1 - r * r, c->fits.tc1.time,
-                                       c->plan->spec.physics.paper_time(c->fits.tc1.time)};
-      t.add_row(row);
-    }
-    Comparison phi;
-    phi.quantity = "phi1";
-    phi.d = d;
-    phi.theory = d == 2 ? 2.25 : 3.0;
-    phi.tolerance = 0.5;
-    phi.source = "paper (t_c1 ~ (1-r^2)^-phi1)";
-    if (x.size() >= 3) {
-      const CrossoverExponent e = fit_crossover_exponent(x, y);
-      phi.measured = e.phi;
-      phi.uncertainty = e.standard_error;
-      phi.note = "least-squares fit over r = 0.1, 0.5, 0.8 (" + std::to_string(e.points) +
-                 " points); uncertainty: standard error of the slope";
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "T%d(x) = %.6g*x**(-%.6g)\n", d, e.prefactor, e.phi);
-      fits += buf;
-      plot += std::string(plot.empty() ? "" : ", \\\n     ") + "T" + std::to_string(d) +
-              "(x) with lines dt 2 title sprintf('d = " + std::to_string(d) +
-              " fit: phi_1 = %.2f', " + format_double(e.phi) + ")";
-    } else {
-      phi.note = "fewer than 3 crossover times found";
-    }
-    cmp.push_back(phi);
-    plot = "'fig6_crossover.csv' skip 1 using ($1==" + std::to_string(d) +
-           " ? $3 : 1/0):4 with points pt 7 ps 1.5 title 'd = " + std::to_string(d) +
-           " (slope rule)'" + (plot.empty() ? "" : ", \\\n     ") + plot;
-  }
-  write_csv(t, dir / "fig6_crossover.csv");
-  std::string gp = gnuplot_preamble("fig6_crossover.png", 900, 650);
-  if (t.rows() == 0)
-    return run_gnuplot(dir, "fig6_crossover.gp",
-                       gp + no_data_plot("fig6_crossover.csv", "no t_c1 found in these runs"));
-  gp += fits;
-  gp +=
-      "set title 'Crossover time t_{c1} against 1 - r^2 (paper: phi_1 = 2.25 in 2D, 3.0 in 3D)'\n"
-      "set logscale xy\nset xlabel '1 - r^2'\nset ylabel 't_{c1} (simulation units)'\nset key top "
-      "right\n"
-      "plot " +
-      plot + "\n";
-  return run_gnuplot(dir, "fig6_crossover.gp", gp);
-}
-
-// t_c2 against delta: the time from which the local slope of <N_t> leaves the 10% band around
-// alpha d for good (towards the elastic 2/(d+2) d), searched from <N_t> >= 20 on.
-std::string fig_delta(const std::vector<CaseResult>& all, const fs::path& dir,
-                      std::vector<Comparison>& cmp, std::ostringstream& notes) {
-  Table t;
-  for (const char* n : {"delta", "t_c2", "t_c2_paper"}) t.add_column(n, {});
-  std::vector<double> x, y;
-  for (const auto& c : all) {
-    if (!c.plan->delta_scan) continue;
-    const auto& p = c.plan->spec.physics;
-    const Table ts = c.sums.timeseries();
-    const auto& tt = ts.column("t");
-    const auto& n = ts.column("active");
-    SlopeCrossoverOptions o;
-    o.target = theory_alpha(p) * p.dim;
-    for (std::size_t i = 0; i < n.size(); ++i)
-      if (n[i] >= 20) {
-        o.t_lo = tt[i];
-        break;
-      }
-    const Crossover tc2 = crossover_leave(tt, n, o);
-    if (!tc2.found) {
-      notes << "- t_c2 not found for delta = " << fmt(p.cutoff) << ": " << tc2.note << "\n";
+// "R_front" -> "R_{front}": a whole subscript in gnuplot's enhanced text.
+std::string enhanced(const std::string& q) {
+  std::string out;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (q[i] != '_') {
+      out += q[i];
       continue;
     }
-    notes << "- t_c2(delta = " << fmt(p.cutoff) << ") = " << fmt(tc2.time) << " (2D, r = 0.1, "
-          << c.sums.count() << " realisations)\n";
-    x.push_back(p.cutoff);
-    y.push_back(tc2.time);
-    const std::vector<double> row = {p.cutoff, tc2.time, p.paper_time(tc2.time)};
-    t.add_row(row);
+    std::size_t j = i + 1;
+    while (j < q.size() && std::isalnum(static_cast<unsigned char>(q[j]))) ++j;
+    out += "_{" + q.substr(i + 1, j - i - 1) + "}";
+    i = j - 1;
   }
-  Comparison phi;
-  phi.quantity = "phi2";
-  phi.d = 2;
-  phi.r = 0.1;
-  phi.theory = 1.5;
-  phi.tolerance = 0.3;
-  phi.source = "paper: t_c2 ~ delta^-phi2, phi2 = 1/(1-alpha) = 3/2 in 2D";
-  std::string fitline;
-  if (x.size() >= 3) {
-    const CrossoverExponent e = fit_crossover_exponent(x, y);
-    phi.measured = e.phi;
-    phi.uncertainty = e.standard_error;
-    phi.note =
-        "least-squares fit of ln t_c2 against ln delta over delta = 1e-2, 3e-3, 1e-3; "
-        "uncertainty: standard error of the slope";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "T(x) = %.6g*x**(-%.6g)\n", e.prefactor, e.phi);
-    fitline = buf;
-  } else {
-    phi.note = "fewer than 3 values of t_c2 found";
-  }
-  cmp.push_back(phi);
-  write_csv(t, dir / "fig7_tc2_delta.csv");
-  std::string gp = gnuplot_preamble("fig7_tc2_delta.png", 900, 650);
-  if (t.rows() == 0)
-    return run_gnuplot(dir, "fig7_tc2_delta.gp",
-                       gp + no_data_plot("fig7_tc2_delta.csv", "no t_c2 reached in these runs"));
-  gp += fitline;
-  gp +=
-      "set title 'Crossover time t_{c2} against the cutoff delta (2D, r = 0.1; paper: phi_2 = "
-      "3/2)'\n"
-      "set logscale xy\nset xlabel 'delta'\nset ylabel 't_{c2} (simulation units)'\nset key top "
-      "right\n"
-      "plot 'fig7_tc2_delta.csv' skip 1 using 1:2 with points pt 7 ps 1.5 title 'slope rule'";
-  if (!fitline.empty())
-    gp += ", \\\n     T(x) with lines dt 2 title sprintf('fit: phi_2 = %.2f', " +
-          format_double(phi.measured) + ")";
-  gp += "\n";
-  return run_gnuplot(dir, "fig7_tc2_delta.gp", gp);
+  return out;
 }
 
-// --- Comparisons ---------------------------------------------------------------------------------
-
-void add_comparisons(const CaseResult& c, std::vector<Comparison>& out) {
+// The local slopes of every fitted quantity of one case with their bootstrap bands, the
+// theory's exponent and the plateau fit (fig8_local_slopes_<case>).
+std::string fig_local_slopes(const CaseResult& c, const Out& out) {
+  const auto& f = c.fits;
   const auto& p = c.plan->spec.physics;
-  const double r = p.restitution;
-  for (const auto& e : c.fits.exponents) {
-    if (r == 1 && e.column == "energy") continue;  // conserved: says nothing about alpha
-    Comparison x;
-    x.quantity = "alpha from " + e.quantity;
-    x.d = p.dim;
-    x.r = r;
-    x.measured = e.alpha;
-    x.uncertainty = e.alpha_uncertainty;
-    x.theory = c.fits.alpha_theory;
-    x.tolerance = 0.02;
-    x.source = r < 1 ? "scaling theory 1/(d+1)" : "scaling theory 2/(d+2)";
-    x.note = e.note.empty()
-                 ? "exponent " + format_number(e.fit.exponent) + " over t in [" +
-                       format_number(e.fit.window.t_lo) + ", " + format_number(e.fit.window.t_hi) +
-                       "]; uncertainty: half width of the 95% bootstrap interval"
-                 : e.note;
-    out.push_back(x);
+  const std::string base = "fig8_local_slopes_" + c.plan->name;
+  Table t;
+  t.add_column("t", f.exponents.front().slope.t);
+  std::vector<double> tp;
+  for (double x : f.exponents.front().slope.t) tp.push_back(p.paper_time(x));
+  t.add_column("t_paper", tp);
+  for (const auto& e : f.exponents) {
+    std::string col = e.column;
+    t.add_column(col + "_slope", e.slope.slope);
+    t.add_column(col + "_lo", e.slope.lo);
+    t.add_column(col + "_hi", e.slope.hi);
   }
-  Comparison a;
-  a.quantity = "A(t_max)";
-  a.d = p.dim;
-  a.r = r;
-  a.measured = c.fits.anisotropy;
-  a.uncertainty = c.fits.anisotropy_sem;
-  if (r < 1) {
-    a.relation = "below";
-    a.theory = 1;
-    a.source = "paper: A(t) converges to a value below 1 for r < 1";
-  } else {
-    a.theory = 0;
-    a.tolerance = 0.05;
-    a.source = "paper: A(t) converges to 0 for r = 1";
-  }
-  a.note = "mean over realisations at the last sample; uncertainty: standard error";
-  out.push_back(a);
-  if (p.dim == 2) {
-    for (int k = 0; k < 2; ++k) {
-      Comparison b;
-      b.quantity = k == 0 ? "band packing (typical)" : "band packing (upper, 90% quantile)";
-      b.d = 2;
-      b.r = r;
-      b.measured = k == 0 ? c.fits.packing_typical : c.fits.packing_upper;
-      b.uncertainty = k == 0 ? c.fits.packing_typical_sem : c.fits.packing_upper_sem;
-      b.theory = r < 1 ? 0.80 : 0.47;
-      b.tolerance = r < 1 ? 0.02 : 0.05;
-      b.source = r < 1 ? "paper: 0.78-0.82 for r < 1 (cells of side 10)" : "paper: ~0.47 for r = 1";
-      b.note = "at the last snapshot time; uncertainty: standard error over realisations";
-      out.push_back(b);
+  write_csv(t, out.dir / (base + ".csv"));
+  // From <N_t> >= 20 on, where the plateau search starts (earlier slopes are a handful of
+  // particles' noise).
+  const Table ts = c.sums.timeseries();
+  double t_start = ts.column("t").back();
+  for (std::size_t i = 0; i < ts.rows(); ++i)
+    if (ts.column("active")[i] >= 20) {
+      t_start = ts.column("t")[i];
+      break;
     }
-  }
-  if (r == 0.1) {
-    for (int k = 0; k < 2; ++k) {
-      Comparison q;
-      q.quantity = k == 0 ? "collapse quality Q of P(R,t)" : "collapse quality Q of P(v,t)";
-      q.d = p.dim;
-      q.r = r;
-      q.measured = k == 0 ? c.fits.collapse_radius : c.fits.collapse_speed;
-      q.theory = 0;
-      q.tolerance = 0.05;
-      q.source = "perfect collapse (paper Figs. 4, 5); Q = inter-curve variance / curve variance";
-      q.note = c.fits.collapse_note;
-      out.push_back(q);
+  std::string gp = gnuplot_preamble(base, 1500, 900);
+  gp += "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) +
+        "]\nset offsets 0, 0, graph 0.3, 0\n";
+  gp +=
+      "set multiplot layout 2,3 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
+      ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
+      " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
+      "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
+      "set key top right font ',9' samplen 2\nset style fill transparent solid 0.3 "
+      "noborder\n";
+  for (std::size_t q = 0; q < f.exponents.size(); ++q) {
+    const auto& e = f.exponents[q];
+    const int col = 3 + 3 * int(q);  // slope column
+    const std::string name = enhanced(e.quantity);
+    gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
+    std::string plot = "plot '" + base + ".csv' skip 1 using 1:" + std::to_string(col + 1) + ":" +
+                       std::to_string(col + 2) +
+                       " with filledcurves lc rgb '#6090d0' title '95% band', '' skip 1 using 1:" +
+                       std::to_string(col) +
+                       " with lines lw 2 lc rgb '#2050a0' title 'local slope'";
+    if (std::isfinite(e.theory)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "%.6g", e.theory);
+      plot += std::string(", ") + buf + " with lines " + theory_style(p.dim) + " title 'theory " +
+              fmt(e.theory, 3) + "'";
     }
+    if (std::isfinite(e.fit.exponent)) {
+      char buf[300];
+      std::snprintf(buf, sizeof buf, ", (x >= %.6g && x <= %.6g) ? %.6g : 1/0", e.fit.window.t_lo,
+                    e.fit.window.t_hi, e.fit.exponent);
+      plot += std::string(buf) + " with lines lw 5 lc rgb '#d06000' title 'fit " +
+              fmt(e.fit.exponent, 3) + " [" + fmt(e.fit.ci_lo, 3) + ", " + fmt(e.fit.ci_hi, 3) +
+              "]'";
+    } else {
+      gp += "set label 1 'no plateau within the run' at graph 0.04, 0.08 left\n";
+    }
+    gp += plot + "\nunset label 1\n";
   }
+  gp += "unset multiplot\n";
+  return out.plot(base + ".gp", gp);
 }
 
-std::string comparisons_json(const std::vector<Comparison>& cmp) {
-  std::ostringstream j;
-  j << "[\n";
-  for (std::size_t k = 0; k < cmp.size(); ++k) {
-    const auto& c = cmp[k];
-    j << "    {\"quantity\": " << json_string(c.quantity) << ", \"d\": " << c.d
-      << ", \"r\": " << json_number(c.r) << ", \"measured\": " << json_number(c.measured)
-      << ", \"uncertainty\": " << json_number(c.uncertainty)
-      << ", \"theory\": " << json_number(c.theory) << ", \"relation\": " << json_string(c.relation)
-      << ", \"tolerance\": " << json_number(c.tolerance)
-      << ", \"agrees\": " << (c.agrees() ? "true" : "false")
-      << ", \"source\": " << json_string(c.source) << ", \"note\": " << json_string(c.note) << "}"
-      << (k + 1 < cmp.size() ? "," : "") << "\n";
+// Crossover times against their control parameter with the fitted line, its exponent and
+// interval in the key.
+struct CrossoverPlot {
+  std::string base, title, xlabel, ylabel, name;  // name: φ_1 or φ_2
+};
+
+std::string fig_crossover_points(
+    const Out& out, const CrossoverPlot& cp,
+    const std::vector<std::pair<int, std::vector<CrossoverPoint>>>& sets,
+    const std::vector<CrossoverExponentFit>& fits) {
+  Table t;
+  for (const char* n : {"d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+  std::string plot, functions;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const int d = sets[k].first;
+    for (const auto& p : sets[k].second) {
+      if (!p.crossover.found) continue;
+      std::vector<double> ok;
+      for (double x : p.draws)
+        if (std::isfinite(x)) ok.push_back(x);
+      std::sort(ok.begin(), ok.end());
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      const double lo = ok.size() >= 10 ? sorted_quantile(ok, 0.025) : nan;
+      const double hi = ok.size() >= 10 ? sorted_quantile(ok, 0.975) : nan;
+      const std::vector<double> row = {double(d), p.control, p.crossover.time, lo, hi};
+      t.add_row(row);
+    }
+    const std::string ds = std::to_string(d);
+    plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
+            ".csv' skip 1 using ($1==" + ds +
+            " ? $2 : 1/0):3:4:5 with yerrorbars pt 7 ps 1.5 title 'd = " + ds + "'";
+    const auto& f = fits[k];
+    if (std::isfinite(f.fit.phi)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "T%d(x) = %.6g*x**(-%.6g)\n", d, f.fit.prefactor, f.fit.phi);
+      functions += buf;
+      const std::string interval = std::isfinite(f.ci_lo)
+                                       ? " [" + fmt(f.ci_lo, 3) + ", " + fmt(f.ci_hi, 3) + "]"
+                                       : " ± " + fmt(f.fit.standard_error, 2);
+      plot += ", \\\n     T" + ds + "(x) with lines " + theory_style(d) + " title 'd = " + ds +
+              " fit: " + cp.name + " = " + fmt(f.fit.phi, 3) + interval + "'";
+    }
   }
-  j << "  ]";
-  return j.str();
+  write_csv(t, out.dir / (cp.base + ".csv"));
+  std::string gp = gnuplot_preamble(cp.base, 900, 650);
+  if (t.rows() == 0)
+    return out.plot(cp.base + ".gp",
+                    gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
+  gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
+        "'\nset ylabel '" + cp.ylabel + "'\nset key top right\n" + "plot " + plot + "\n";
+  return out.plot(cp.base + ".gp", gp);
+}
+
+// fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
+// beside the paper's 0.78-0.82 (r < 1) and ~0.47 (r = 1) and the edge-free measures.
+std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
+  Table t;
+  for (const char* n : {"r", "packing", "P"}) t.add_column(n, {});
+  std::string plot;
+  for (bool elastic : {false, true})
+    for (const CaseResult* c : cases_of(all, 2, elastic)) {
+      const double r = c->plan->spec.physics.restitution;
+      if (c->sums.snapshots().empty() || c->sums.count() == 0) continue;
+      const Histogram h = c->sums.snapshots().back().packing.mean();
+      for (std::size_t b = 0; b < h.bins(); ++b) {
+        const std::vector<double> row = {r, h.centre(b), h.values[b]};
+        t.add_row(row);
+      }
+      plot += std::string(plot.empty() ? "plot " : ", \\\n     ") +
+              "'fig9_packing.csv' skip 1 using ($1==" + rtext(r) +
+              " ? $2 : 1/0):3 with steps lw 2 title sprintf('r = " + rtext(r) +
+              ": local 90%% %.2f, densest cell %.2f', " +
+              format_double(c->fits.last_scalar("packing_local_upper")) + ", " +
+              format_double(c->fits.last_scalar("packing_densest_cell")) + ")";
+    }
+  write_csv(t, out.dir / "fig9_packing.csv");
+  std::string gp = gnuplot_preamble("fig9_packing", 1000, 650);
+  if (t.rows() == 0)
+    return out.plot("fig9_packing.gp", gp + no_data_plot("fig9_packing.csv", "no band cells"));
+  gp +=
+      "set title 'Packing fraction of cells of side 10 holding band particles, weighted by "
+      "their active particles (2D, last snapshot)'\n"
+      "set xlabel 'cell packing fraction φ'\nset ylabel 'active-weighted density'\n"
+      "set xrange [0:1]\nset key at graph 0.98, graph 0.9 right top font ',10'\n"
+      "set object 1 rect from 0.78, graph 0 to 0.82, graph 1 fc rgb '#c0c0c0' fs solid 0.4 "
+      "noborder behind\n"
+      "set arrow 1 from 0.47, graph 0 to 0.47, graph 1 nohead dt 2 lw 2 lc rgb 'black'\n"
+      "set label 2 'paper r < 1: 0.78-0.82' at 0.77, graph 0.95 right\n"
+      "set label 3 'paper r = 1: ~0.47' at 0.48, graph 0.95 left\n" +
+      plot + "\n";
+  return out.plot("fig9_packing.gp", gp);
+}
+
+// The local-slope figure of every case, linked from its comparisons.
+std::string slope_figure_of(const FigureCase& c) {
+  return "fig8_local_slopes_" + c.name + ".png";
 }
 
 // --- The command ---------------------------------------------------------------------------------
@@ -567,8 +525,10 @@ void run(const FiguresOptions& o) {
   const FiguresMode mode = mode_of(o);
   if (o.threads < 1) throw UserError("--threads must be at least 1");
   if (o.sample < 1) throw UserError("--sample must be at least 1");
+  const std::vector<std::string> formats = parse_plot_formats(o.format);
   const FiguresPlan plan = figures_plan(mode, o.seed);
   const auto dir = prepare_output_dir(o.out, o.force);
+  const Out out{dir, formats};
   install_stop_handlers();
   if (o.estimate) return estimate(o, plan, dir);
 
@@ -595,7 +555,10 @@ void run(const FiguresOptions& o) {
     fs::create_directories(edir);
     CaseResult cr{&c, std::move(r.sums), {}, since(tc)};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
-    if (!c.delta_scan) add_comparisons(cr, cmp);
+    if (!c.delta_scan) {
+      const auto more = case_comparisons(c.spec, cr.fits, slope_figure_of(c));
+      cmp.insert(cmp.end(), more.begin(), more.end());
+    }
     results.push_back(std::move(cr));
   }
   progress.done();
@@ -607,32 +570,60 @@ void run(const FiguresOptions& o) {
     if (!e.empty()) problems.push_back(std::move(e));
   };
   check(render_fig1(plan, dir));
-  check(fig2(results, dir));
-  check(fig3(results, dir));
-  for (const auto& c : results)
-    if (c.plan->spec.physics.restitution == 0.1 && !c.plan->delta_scan)
-      check(fig_collapse(c, dir,
+  check(fig2(results, out));
+  check(fig3(results, out));
+  for (const auto& c : results) {
+    if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.restitution == 0.1)
+      check(fig_collapse(c, out,
                          c.plan->spec.physics.dim == 2 ? "fig4_collapse_2d" : "fig5_collapse_3d",
                          c.plan->spec.physics.dim == 2 ? 4 : 5));
-  check(fig_crossover(results, dir, cmp, notes));
-  check(fig_delta(results, dir, cmp, notes));
-  const double wall = since(t0);
-
-  // t_c2 where the data reach it.
-  for (const auto& c : results) {
-    const auto& p = c.plan->spec.physics;
-    if (c.plan->delta_scan) continue;
-    if (p.restitution < 1 && !c.fits.tc2.found)
-      notes << "- t_c2 (d = " << p.dim << ", r = " << rtext(p.restitution)
-            << ") not reached by t_max = " << fmt(p.t_max)
-            << ": v_t is still far above delta = " << fmt(p.cutoff)
-            << " (expected t_c2 ~ delta^-1/(1-alpha), "
-            << fmt(std::pow(p.cutoff, -1 / (1 - theory_alpha(p))), 3)
-            << " in units where v_t ~ t^(alpha-1) with prefactor 1)\n";
-    else if (c.fits.tc2.found)
-      notes << "- t_c2 (d = " << p.dim << ", r = " << rtext(p.restitution)
-            << ") = " << fmt(c.fits.tc2.time) << "\n";
+    if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
   }
+  check(fig_packing(results, out));
+
+  // phi1 from every r < 1 of each dimension, phi2 from the delta scan.
+  std::vector<std::pair<int, std::vector<CrossoverPoint>>> tc1_sets, tc2_sets(1);
+  std::vector<CrossoverExponentFit> phi1_fits, phi2_fits;
+  for (int d : {2, 3}) {
+    std::vector<CrossoverPoint> points;
+    for (const CaseResult* c : cases_of(results, d, false)) {
+      const double r = c->plan->spec.physics.restitution;
+      points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
+    }
+    phi1_fits.push_back(fit_crossover_points(points));
+    cmp.push_back(phi1_comparison(d, phi1_fits.back()));
+    tc1_sets.emplace_back(d, std::move(points));
+  }
+  tc2_sets[0].first = 2;
+  for (const auto& c : results) {
+    if (!c.plan->delta_scan) continue;
+    const double delta = c.plan->spec.physics.cutoff;
+    tc2_sets[0].second.push_back({delta, "delta = " + fmt(delta), c.fits.tc2, c.fits.tc2_draws});
+  }
+  phi2_fits.push_back(fit_crossover_points(tc2_sets[0].second));
+  cmp.push_back(phi2_comparison(2, 0.1, phi2_fits.back()));
+  check(fig_crossover_points(
+      out,
+      {"fig6_crossover",
+       "Crossover time t_{c1} against 1 - r^2 (paper: φ_1 = 2.25 in 2D, 3.0 in 3D)", "1 - r^2",
+       "t_{c1} (simulation units)", "φ_1"},
+      tc1_sets, phi1_fits));
+  check(fig_crossover_points(
+      out,
+      {"fig7_tc2_delta",
+       "Crossover time t_{c2} against the cutoff δ (2D, r = 0.1; paper: φ_2 = 3/2)", "δ",
+       "t_{c2} (simulation units)", "φ_2"},
+      tc2_sets, phi2_fits));
+  for (const auto& [d, points] : tc1_sets)
+    for (const auto& p : points)
+      if (!p.crossover.found)
+        notes << "- t_c1 not found for d = " << d << ", " << p.label << ": " << p.crossover.note
+              << "\n";
+  for (const auto& p : tc2_sets[0].second)
+    notes << "- t_c2(" << p.label << ") "
+          << (p.crossover.found ? "= " + fmt(p.crossover.time) : "not found: " + p.crossover.note)
+          << " (2D, r = 0.1)\n";
+  const double wall = since(t0);
 
   // summary.json
   std::ostringstream j;
@@ -673,62 +664,26 @@ void run(const FiguresOptions& o) {
        << c.sums.count() << " | " << fmt(c.wall, 3) << " |\n";
   }
   md << "\nEach case's averaged time series, distributions and fits are in `ensembles/<case>/` "
-        "(see its summary.json for the windows and intervals).\n\n## Measured against the paper\n\n"
-     << "| quantity | d | r | measured | uncertainty | paper / theory | agrees | note "
-        "|\n|---|---|---|---|---|---|---|---|\n";
-  for (const auto& c : cmp)
-    md << "| " << c.quantity << " | " << c.d << " | " << (std::isfinite(c.r) ? rtext(c.r) : "-")
-       << " | " << fmt(c.measured) << " | " << fmt(c.uncertainty, 2) << " | "
-       << (c.relation == "below" ? "< " : "") << fmt(c.theory) << " | "
-       << (c.agrees() ? "yes" : "**no**") << " | " << c.note << " |\n";
-  md << "\n'agrees': |measured - theory| <= max(uncertainty, tolerance) with tolerance 0.02 for "
-        "alpha, "
-        "0.5 for phi1, 0.02 for the packing (the paper's range 0.78-0.82), 0.05 for A -> 0 and for "
-        "Q; for "
-        "'< 1', measured - uncertainty < 1.\n\n## Definitions\n\n"
-        "- alpha from X: the exponent of <X> fitted as a straight line of ln <X> against ln t over "
-        "a scaling "
-        "window (the longest range within the last 1.5 decades, once <N_t> >= 20, where the local "
-        "log-slope "
-        "stays within +-0.05; without one, the last decade), turned "
-        "into alpha by N ~ t^(alpha d), E ~ t^(alpha d + 2 alpha - 2), R ~ t^alpha, v ~ "
-        "t^(alpha-1); the "
-        "uncertainty is half the 95% percentile interval of 1000 bootstrap resamples of the "
-        "realisations.\n"
-        "- t_c1: the time from which the local slope of <N_t> stays within 10% of alpha d (slope "
-        "rule); "
-        "phi1: least-squares slope of ln t_c1 against -ln(1 - r^2) over r = 0.1, 0.5, 0.8, with "
-        "its standard "
-        "error. t_c2: the later time from which the slope leaves that band for good.\n"
-        "- Band packing: cells of side ~10; `typical` = active-weighted mean packing fraction of "
-        "cells "
-        "holding band particles; `upper` = active-weighted 90% quantile. A band only ~10 diameters "
-        "thick "
-        "leaves most cells straddling its edges, which pulls `typical` below the packing inside "
-        "the band.\n"
-        "- Q (collapse quality): mean inter-curve variance of the scaled distributions on a common "
-        "grid over "
-        "the variance of their mean curve (0 = perfect collapse).\n"
-        "- A(t): ((l1-l2)/(l1+l2))^2 in 2D, relative shape anisotropy in 3D, of the gyration "
-        "tensor of the "
-        "active particles, averaged over realisations.\n\n## Notes\n\n"
+        "(see its summary.json for the windows and intervals); each exponent's row links the "
+        "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
+     << comparisons_markdown(cmp) << "\n## Definitions\n\n"
+     << definitions_markdown() << "\n## Notes\n\n"
      << notes.str();
   for (const auto& p : problems) md << "- problem: " << p << "\n";
   md << "\n## Files\n\n"
         "- fig1a_overlay_r0.1.png: active particles of one 2D r = 0.1 realisation at four times "
-        "(Fig. 1a); "
-        "fig1b_elastic_r1.png: 2D r = 1 (Fig. 1b).\n"
-        "- fig2_anisotropy.{png,csv,gp}: A(t) in 2D (Fig. 2).\n"
-        "- fig3_active_energy.{png,csv,gp}: <N_t>, <E_t> in 2D and 3D with the theory's slopes "
-        "(Fig. 3).\n"
-        "- fig4_collapse_2d.{png,csv,gp}, fig5_collapse_3d.{png,csv,gp}: scaled P(R,t), P(v,t) for "
-        "r = 0.1 "
-        "(Figs. 4, 5).\n"
-        "- fig6_crossover.{png,csv,gp}: t_c1 against 1 - r^2 and the phi1 fits.\n"
-        "- fig7_tc2_delta.{png,csv,gp}: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 "
-        "fit.\n"
-        "- summary.json: every comparison as {quantity, d, r, measured, uncertainty, theory, "
-        "agrees}.\n"
+        "(Fig. 1a); fig1b_elastic_r1.png: 2D r = 1 (Fig. 1b).\n"
+        "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
+        "- fig3_active_energy: <N_t>, <E_t> in 2D and 3D with the theory's slopes (Fig. 3).\n"
+        "- fig4_collapse_2d, fig5_collapse_3d: scaled P(R,t), P(v,t) for r = 0.1 (Figs. 4, 5).\n"
+        "- fig6_crossover: t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits.\n"
+        "- fig7_tc2_delta: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 fit.\n"
+        "- fig8_local_slopes_<case>: local slopes of N_t, E_t, R_t, R_front, dR_front/dt and "
+        "C_t with bootstrap bands, theory lines and plateau fits (CSV beside).\n"
+        "- fig9_packing: active-weighted distribution of the cell packing in 2D.\n"
+        "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
+        "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
+        "theory, agrees}.\n"
         "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
   write_file_atomic(dir / "report.md", md.str());
   if (!o.quiet) {
@@ -745,16 +700,19 @@ void add_figures_command(CLI::App& app) {
   auto* sub =
       app.add_subcommand("figures", "Reproduce the paper's Figs. 1-5 and a report with numbers");
   sub->add_flag("--quick", opt->quick,
-                "Smaller systems, fewer realisations: about 1.5 minutes on 2 cores (default)");
+                "Smaller systems, fewer realisations: a few minutes on 2 cores (default)");
   sub->add_flag("--full", opt->full,
-                "The paper's sizes: 2.5e5 discs, 2e6 spheres, 100 realisations (about 26 minutes "
-                "on 2 cores)");
+                "The paper's sizes: 2.5e5 discs, 2e6 spheres, 100 realisations, and the 3D "
+                "elastic blast at 4e6 spheres (see --estimate)");
   sub->add_flag("--tiny", opt->tiny,
                 "Seconds-long smoke run (tests): every file, meaningless numbers");
   sub->add_flag(
       "--estimate", opt->estimate,
       "Only estimate the wall time of the chosen mode from --sample realisations per case");
   sub->add_option("--sample", opt->sample, "Realisations per case for --estimate")
+      ->capture_default_str();
+  sub->add_option("--format", opt->format,
+                  "Figure formats, comma-separated: png, svg, pdf (the .gp scripts write any)")
       ->capture_default_str();
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--threads", opt->threads, "Worker threads")->capture_default_str();

@@ -12,12 +12,16 @@ namespace gs::app {
 
 enum class FiguresMode { Tiny, Quick, Full };
 
+// Paper: one (d, r) of the paper's figures (and the added r of the phi1 fit). DeltaScan: the
+// scan of the cutoff delta (2D, r = 0.1) that measures t_c2 ~ delta^-phi2, only in fig7 and the
+// phi2 comparison. Elastic3D: the 3D elastic blast run big and long enough for its plateau.
+enum class CaseRole { Paper, DeltaScan, Elastic3D };
+
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
   EnsembleSpec spec;
-  // Part of the scan of the cutoff delta (2D, r = 0.1) that measures t_c2 ~ delta^-phi2; these
-  // cases appear in no figure of the paper, only in fig7 and the phi2 comparison.
-  bool delta_scan = false;
+  CaseRole role = CaseRole::Paper;
+  bool delta_scan = false;  // role == DeltaScan
 };
 
 struct FiguresPlan {

@@ -21,35 +21,48 @@ bool is_png(const fs::path& p) {
 }
 
 TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
-  const auto dir = scratch_dir("tiny");
-  const auto r = grainshock("figures --tiny --threads 2 --quiet --out " + dir.string());
+  // A folder whose name has a quote and a space: gnuplot runs without a shell.
+  const auto dir = scratch_dir("it's tiny");
+  const auto r = grainshock("figures --tiny --threads 2 --quiet --format png,svg --out \"" +
+                            dir.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* png : {"fig1a_overlay_r0.1.png", "fig1b_elastic_r1.png"})
     EXPECT_TRUE(is_png(dir / png)) << png;
-  for (const char* base : {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d",
-                           "fig5_collapse_3d", "fig6_crossover", "fig7_tc2_delta"}) {
+  for (const char* base :
+       {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d", "fig5_collapse_3d",
+        "fig6_crossover", "fig7_tc2_delta", "fig8_local_slopes_d2_r0.1",
+        "fig8_local_slopes_d3_r1_large", "fig9_packing"}) {
     const std::string b(base);
     EXPECT_TRUE(is_png(dir / (b + ".png"))) << b;
+    EXPECT_NE(read_file(dir / (b + ".svg")).find("<svg"), std::string::npos) << b;
     EXPECT_TRUE(fs::exists(dir / (b + ".csv"))) << b;
     // The script draws from the CSV beside it, so that a user can restyle the plot.
     const std::string gp = read_file(dir / (b + ".gp"));
     EXPECT_NE(gp.find(b + ".csv"), std::string::npos) << b;
     EXPECT_NE(gp.find(b + ".png"), std::string::npos) << b;
   }
-  for (const char* c :
-       {"d2_r0.1", "d2_r0.5", "d2_r0.8", "d2_r1", "d3_r0.1", "d3_r0.5", "d3_r0.8", "d3_r1"})
+  // Greek letters as symbols, not words.
+  EXPECT_NE(read_file(dir / "fig4_collapse_2d.gp").find("α"), std::string::npos);
+  EXPECT_EQ(read_file(dir / "fig4_collapse_2d.gp").find("alpha"), std::string::npos);
+  for (const char* c : {"d2_r0.1", "d2_r0.3", "d2_r0.5", "d2_r0.7", "d2_r0.8", "d2_r0.9", "d2_r1",
+                        "d3_r0.1", "d3_r0.5", "d3_r0.8", "d3_r1", "d3_r1_large"})
     EXPECT_TRUE(fs::exists(dir / "ensembles" / c / "timeseries_mean.csv")) << c;
 
   const std::string summary = read_file(dir / "summary.json");
   ASSERT_NE(summary.find("\"comparisons\""), std::string::npos);
   for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
-                          "\"theory\"", "\"agrees\"", "\"wall_seconds\""})
+                          "\"theory\"", "\"agrees\"", "\"wall_seconds\"", "\"figure\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q : {"alpha from R_t", "alpha from N_t", "phi1", "phi2",
-                        "band packing (typical)", "band packing (upper, 90% quantile)", "A(t_max)"})
+  for (const char* q :
+       {"alpha from R_t", "alpha from N_t", "alpha from R_front", "alpha from dR_front/dt",
+        "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2", "band packing (typical)",
+        "band packing (upper, 90% quantile)", "band packing (densest cell, shifted grids)",
+        "band packing (local, 90% quantile)", "band number density (shell peak, no pi/4)",
+        "shell peak density / ambient", "A(t_max)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   const std::string report = read_file(dir / "report.md");
-  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions"})
+  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "does not fix",
+                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
@@ -58,6 +71,11 @@ TEST(CliFigures, BadInputIsRefusedInOneLine) {
   auto r = grainshock("figures --tiny --full --out " + dir.string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
+  r = grainshock("figures --tiny --format png,gif --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--format"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir));
   r = grainshock("figures --tiny --threads 0 --out " + dir.string());
   EXPECT_NE(r.exit_code, 0);

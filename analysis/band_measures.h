@@ -1,0 +1,63 @@
+#pragma once
+// Measures of the band that do not depend on how a grid cuts it (issue 21): the paper's "typical
+// packing fraction ... 0.78-0.82" in cells of side 10 does not say how cells straddling the
+// band's edges count, and a band about one cell thick puts nearly every cell on an edge. So the
+// cell reading is kept as a whole distribution and beside it stand:
+//  - the densest cell over shifted grids (cells of side ~10 holding active particles, the grid
+//    offset by cell/shifts along each axis in turn);
+//  - the local packing around each active particle: every particle centre within local_radius
+//    of it, as whole-particle volume over the ball's volume (unbiased for a uniform medium; no
+//    edge of a grid, only the band's own edges for particles near them), its median and upper
+//    quantile over active particles;
+//  - the front radius and the shell's peak number density on shells of fixed width around the
+//    active centre of mass (not scaling with t^alpha, so that a radius read off them is not the
+//    theory's by construction): the front is where the active density, going outward from the
+//    densest shell, first falls below half the ambient density; the peak is that densest shell.
+// Positions are wrapped into the periodic box for the packing measures; distances from the
+// centre use the snapshot's unwrapped positions.
+#include <limits>
+#include <span>
+
+#include "sim/histogram.h"
+#include "sim/snapshot.h"
+
+namespace gs {
+
+struct BandMeasureOptions {
+  double cell = 10;         // the paper's cell side
+  int shifts = 4;           // grid offsets per axis for the densest cell
+  double local_radius = 3;  // diameters
+  double local_quantile = 0.9;
+  double shell = 2;  // width of the shells of the front radius, diameters
+};
+
+struct ShellFront {
+  double radius = std::numeric_limits<double>::quiet_NaN();
+  double peak_density = std::numeric_limits<double>::quiet_NaN();  // number per unit volume
+};
+
+// From distances of active particles to their centre; NaN when the densest shell is below half
+// the ambient density (no band yet).
+ShellFront shell_front(std::span<const double> distances, int dim, double ambient_density,
+                       double shell);
+
+// shell_front of the active particles of a snapshot around their centre of mass.
+ShellFront measure_front(const Snapshot& s, double ambient_density, double shell = 2);
+
+struct BandMeasures {
+  double densest_cell = std::numeric_limits<double>::quiet_NaN();
+  double local_median = std::numeric_limits<double>::quiet_NaN();
+  double local_upper = std::numeric_limits<double>::quiet_NaN();  // options.local_quantile
+  ShellFront front;
+};
+
+// `ambient_density`: number density of the gas at rest. Needs info.box > 0 (periodic box).
+BandMeasures measure_band(const Snapshot& s, double ambient_density,
+                          const BandMeasureOptions& options = {});
+
+// The cell packing fractions as an active-weighted distribution: each cell counts with the number
+// of active particles in it (fractions and weights from sim/observables.h BandPacking).
+Histogram weighted_cell_histogram(std::span<const double> fraction,
+                                  std::span<const std::uint32_t> active, const Binning& binning);
+
+}  // namespace gs

@@ -1,0 +1,69 @@
+#pragma once
+// Every number of the paper (Jabeen, Rajesh, Ray, EPL 2010) that `grainshock figures` measures,
+// in one place: what is measured, how it is defined, the paper's or theory's value, the
+// tolerance and the rule by which the two agree. The command only runs ensembles and draws.
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/crossover.h"
+#include "analysis/ensemble_fits.h"
+#include "analysis/realisation.h"
+
+namespace gs {
+
+// One entry of the report's table and of summary.json "comparisons".
+struct Comparison {
+  std::string quantity;
+  int d = 0;
+  double r = std::numeric_limits<double>::quiet_NaN();
+  double measured = std::numeric_limits<double>::quiet_NaN();
+  double uncertainty = std::numeric_limits<double>::quiet_NaN();
+  double theory = std::numeric_limits<double>::quiet_NaN();
+  // equal: |measured - theory| <= max(uncertainty, tolerance); below: measured - uncertainty <
+  // theory.
+  std::string relation = "equal";
+  double tolerance = 0;
+  std::string source;  // where the theory value comes from
+  std::string note;    // window, interval, or why nothing was measured
+  std::string figure;  // the figure that shows it (e.g. the local slope beside an exponent)
+  bool measured_ok() const { return std::isfinite(measured); }
+  bool agrees() const;
+};
+
+// The comparisons of one ensemble (exponents, identities, A, band measures, shock jump, Q).
+std::vector<Comparison> case_comparisons(const EnsembleSpec& spec, const EnsembleFits& fits,
+                                         const std::string& slope_figure);
+
+// A crossover time of one run with its bootstrap draws, for phi1 (control 1 - r^2) or phi2
+// (control delta).
+struct CrossoverPoint {
+  double control = 0;
+  std::string label;  // "r = 0.5", "delta = 1e-3"
+  Crossover crossover;
+  std::vector<double> draws;
+};
+
+// phi of t_c ~ control^-phi by least squares over the points found, with a 95% percentile
+// interval from refitting the bootstrap draws (a draw without a crossover at some point is
+// left out of the interval); fewer than three points: no fit, and the note says which points
+// are missing and why.
+struct CrossoverExponentFit {
+  CrossoverExponent fit;
+  double ci_lo = std::numeric_limits<double>::quiet_NaN();
+  double ci_hi = std::numeric_limits<double>::quiet_NaN();
+  std::size_t points = 0;
+  std::string note;
+};
+CrossoverExponentFit fit_crossover_points(const std::vector<CrossoverPoint>& points);
+
+Comparison phi1_comparison(int d, const CrossoverExponentFit& fit);
+Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
+
+std::string comparisons_json(const std::vector<Comparison>& cmp);
+std::string comparisons_markdown(const std::vector<Comparison>& cmp);
+// The report's definitions of every measured quantity and agreement rule.
+std::string definitions_markdown();
+
+}  // namespace gs
