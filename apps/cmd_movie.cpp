@@ -46,14 +46,21 @@ void add_movie_command(CLI::App& app) {
   sub->add_option("--camera", opt->movie.camera,
                   "follow: the front, smoothly; fixed: the whole periodic box")
       ->capture_default_str();
-  sub->add_option("--color-by", opt->movie.colour_by, "speed, radial-velocity or first-collision")
+  sub->add_option("--color-by", opt->movie.colour_by,
+                  "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
+                  "scaled-radial-velocity, radial-velocity or first-collision")
       ->capture_default_str();
   sub->add_option("--scale", opt->movie.scale,
-                  "Colour scale lin, log or auto (log, except lin for radial-velocity)")
+                  "Colour scale lin, log or auto (log for speed and first-collision, else lin)")
       ->capture_default_str();
   sub->add_option("--range", opt->movie.range,
-                  "Fixed colour range MIN MAX (default: spans every frame's 1-99 percentiles)")
+                  "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
+                  "spans every frame's 1-99 percentiles)")
       ->expected(2);
+  sub->add_flag("--range-per-frame", opt->movie.range_per_frame,
+                "Each frame its own 1-99 percentile range");
+  sub->add_flag("--inset", opt->movie.inset,
+                "A profile of density and mean speed against distance, bottom left");
   sub->add_option("--colormap", opt->movie.colormap, "Colormap name")->capture_default_str();
   sub->add_option("--background", opt->movie.background, "light or dark")->capture_default_str();
   sub->add_flag("--show-inactive", opt->movie.show_inactive,

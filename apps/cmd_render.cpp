@@ -5,6 +5,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "render/colormap.h"
+#include "render/field.h"
 #include "render/png.h"
 #include "render/renderer.h"
 #include "sim/error.h"
@@ -20,9 +21,9 @@ void add_render_command(CLI::App& app) {
     render::Style style;
     render::View view;
     std::vector<double> range, percentiles, centre;
-    std::string colormap = "viridis", colour_by = "speed", background = "light";
+    std::string colormap = "magma", colour_by = "auto", background = "light", scale = "auto";
     std::string framing = "fit", backend = "auto";
-    bool log = false, no_colorbar = false, no_time = false, no_legend = false;
+    bool no_colorbar = false, no_time = false, no_legend = false;
     int compression = 1;
   };
   auto opt = std::make_shared<Options>();
@@ -37,15 +38,25 @@ void add_render_command(CLI::App& app) {
   std::string maps;
   for (const auto& n : render::Colormap::names()) maps += (maps.empty() ? "" : ", ") + n;
   sub->add_option("--colormap", opt->colormap, "One of " + maps)->capture_default_str();
-  sub->add_option("--color-by", opt->colour_by, "speed, radial-velocity or first-collision")
+  sub->add_option("--color-by", opt->colour_by,
+                  "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
+                  "scaled-radial-velocity, radial-velocity or first-collision")
       ->capture_default_str();
-  sub->add_option("--range", opt->range, "Fixed colour range MIN MAX (default: percentiles)")
+  sub->add_option("--range", opt->range,
+                  "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
+                  "percentiles)")
       ->expected(2);
+  sub->add_flag("--range-per-frame", opt->style.range_per_frame,
+                "Percentiles of this snapshot even for a scaled field");
   sub->add_option("--percentiles", opt->percentiles,
                   "Automatic range from these percentiles of the shown values")
       ->expected(2)
       ->default_str("1 99");
-  sub->add_flag("--log", opt->log, "Logarithmic colour scale");
+  sub->add_option("--scale", opt->scale,
+                  "Colour scale lin, log or auto (log for speed and first-collision, else lin)")
+      ->capture_default_str();
+  sub->add_flag("--inset", opt->style.inset,
+                "A profile of density and mean speed against distance, bottom left");
   sub->add_flag("--show-inactive", opt->style.show_inactive,
                 "Also draw particles that never collided, in a faint neutral colour");
   sub->add_option("--background", opt->background, "light or dark")->capture_default_str();
@@ -88,9 +99,11 @@ void add_render_command(CLI::App& app) {
     auto& o = *opt;
     auto& st = o.style;
     st.colormap = o.colormap;
-    st.field = render::parse_field(o.colour_by);
+    // An unknown field is reported once the snapshot is read, with the fields it has.
+    for (render::Field f : render::all_fields())
+      if (o.colour_by == render::field_name(f)) st.field = f;
     st.background = render::parse_background(o.background);
-    st.scale = o.log ? render::Scale::Log : render::Scale::Linear;
+    st.scale = render::parse_scale(o.scale, st.field);
     if (!o.range.empty()) st.range = std::pair{o.range[0], o.range[1]};
     if (!o.percentiles.empty())
       st.percentile_low = o.percentiles[0], st.percentile_high = o.percentiles[1];
@@ -117,15 +130,13 @@ void add_render_command(CLI::App& app) {
 
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
-    for (const auto& path : o.inputs) {
-      snaps.push_back(read_xyz(path));
-      const bool needs_velocity = o.inputs.size() == 1 && st.field != render::Field::FirstCollision;
-      if (needs_velocity && snaps.back().size() > 0 && !snaps.back().has_velocity())
-        throw UserError("snapshot '" + path +
-                        "' has no velocities (no velo property); cannot colour by " + o.colour_by);
-      if (o.inputs.size() == 1 && st.field == render::Field::FirstCollision &&
-          snaps.back().size() > 0 && snaps.back().first_collision.empty())
-        throw UserError("snapshot '" + path + "' has no first_collision property");
+    for (const auto& path : o.inputs) snaps.push_back(read_xyz(path));
+    // One snapshot is coloured by a field (several by time): the first file read decides what
+    // "auto" means, and names what it lacks.
+    if (snaps.size() == 1) {
+      st.field = render::choose_field(o.colour_by, snaps.front(), o.inputs.front());
+      st.scale = render::parse_scale(o.scale, st.field);
+      render::check_style(st);
     }
     std::vector<const Snapshot*> ptrs;
     for (const auto& s : snaps) ptrs.push_back(&s);

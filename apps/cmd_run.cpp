@@ -38,6 +38,7 @@ struct RunOptions {
   bool png = false;              // a PNG of every snapshot, and the Fig. 1(a) overlay
   bool compare_elastic = false;  // the Fig. 1(b) frame: the same gas with r = 1
   bool movie = false;            // movie.mp4 of the front, as `grainshock movie` makes it
+  bool movie_inset = false;      // the Fig. 1 job's movie has the profile inset
   int width = 1920, height = 1080;
 };
 
@@ -55,6 +56,7 @@ RunOptions demo_options() {
   o.png = true;
   o.compare_elastic = true;
   o.movie = true;
+  o.movie_inset = true;
   return o;
 }
 
@@ -113,10 +115,12 @@ std::string summary_json(const RunOptions& o, const Simulation& sim, double setu
   return j.str();
 }
 
-// One colour range for all pictures of a run, so that a colour means one speed in every frame:
-// the union of the frames' robust (1st-99th percentile) ranges.
+// One colour range for all pictures of a run, so that a colour means one value in every frame:
+// the field's fixed range, else the union of the frames' robust (1st-99th percentile) ranges.
 std::pair<double, double> common_range(const std::vector<Snapshot>& snaps,
                                        const render::Style& style) {
+  if (snaps.empty()) return {0.0, 1.0};
+  if (const auto fixed = render::default_range(style.field, snaps.front().info.dim)) return *fixed;
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& s : snaps) {
     if (std::find(s.active.begin(), s.active.end(), 1) == s.active.end()) continue;
@@ -133,14 +137,22 @@ std::string png_name(const std::string& stem, double t) {
   return stem + "t_" + time_tag(t) + ".png";
 }
 
-// Fig. 1-style pictures: each snapshot coloured by speed on a shared scale, and (with two or
-// more) the overlay of all times, one colour per time, as in Fig. 1(a).
+// The style of a run's pictures: scaled speed for a kick, with the profile across the band.
+render::Style picture_style(const PhysicsConfig& c) {
+  render::Style style;
+  style.field = c.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;
+  style.scale = render::parse_scale("auto", style.field);
+  style.inset = true;
+  return style;
+}
+
+// Fig. 1-style pictures: each snapshot coloured on a shared scale, and (with two or more) the
+// overlay of all times, one colour per time, as in Fig. 1(a).
 void write_pictures(const std::filesystem::path& dir, const std::vector<Snapshot>& snaps,
                     const RunOptions& o) {
   std::filesystem::create_directories(dir / "frames");
   render::Renderer renderer;
-  render::Style style;
-  style.scale = render::Scale::Log;  // speeds in the band span decades
+  render::Style style = picture_style(o.physics);
   style.range = common_range(snaps, style);
   render::View view;
   view.width = o.width;
@@ -167,7 +179,7 @@ void write_elastic_comparison(const std::filesystem::path& dir, const RunOptions
   const Snapshot s = sim->snapshot();
   write_xyz((dir / "snapshots" / ("elastic_" + snapshot_name(c.t_max))).string(), s);
   render::Renderer renderer;
-  render::Style style;
+  const render::Style style = picture_style(c);
   render::View view;
   view.width = o.width;
   view.height = o.height;
@@ -184,6 +196,7 @@ int run(const RunOptions& o) {
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;
+  movie.inset = o.movie_inset;
   if (o.movie) check_front_movie(o.physics, movie);
   const auto dir = prepare_output_dir(o.out, o.force);
   std::filesystem::create_directories(dir / "snapshots");

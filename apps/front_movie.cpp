@@ -90,7 +90,7 @@ struct FrameScan {
   Eigen::AlignedBox3d fit;    // the renderer's rule: active particles, else all
 };
 
-FrameScan scan(const Snapshot& s, const render::Style& style) {
+FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   FrameScan f;
   f.any_active = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
   auto in_front = [&](std::size_t i) {
@@ -103,7 +103,7 @@ FrameScan scan(const Snapshot& s, const render::Style& style) {
   if (f.front.isEmpty()) f.front.extend(Eigen::Vector3d::Constant(s.info.box / 2));
   for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
-  if (f.any_active) {
+  if (f.any_active && with_range) {
     const auto values = render::field_values(s, style.field);
     f.range = render::auto_range(values, s.active, style.scale, style.percentile_low,
                                  style.percentile_high);
@@ -198,16 +198,18 @@ Plan make_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   render::Style& style = p.style;
   render::View& view = p.view;
   style.colormap = o.colormap;
-  style.field = render::parse_field(o.colour_by);
-  style.background = render::parse_background(o.background);
-  if (o.scale == "auto")
-    style.scale =
-        style.field == render::Field::RadialVelocity ? render::Scale::Linear : render::Scale::Log;
-  else if (o.scale == "lin" || o.scale == "log")
-    style.scale = o.scale == "log" ? render::Scale::Log : render::Scale::Linear;
+  if (o.colour_by == "auto")
+    style.field =
+        physics.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;
   else
-    throw UserError("unknown --scale '" + o.scale + "' (use auto, lin or log)");
+    style.field = render::parse_field(o.colour_by);
+  style.background = render::parse_background(o.background);
+  style.scale = render::parse_scale(o.scale, style.field);
   if (!o.range.empty()) style.range = std::pair{o.range[0], o.range[1]};
+  if (!o.range.empty() && o.range_per_frame)
+    throw UserError("--range and --range-per-frame exclude each other");
+  style.range_per_frame = o.range_per_frame;
+  style.inset = o.inset;
   style.show_inactive = o.show_inactive;
   render::check_style(style);
   render::check_size(o.movie.width, o.movie.height, 16384);
@@ -249,18 +251,21 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
   std::vector<Shot> shots;
   Snapshot snap;  // reused frame after frame
   bool stopped = false;
-  if (!style.range || follow) {
+  // The colour range over all frames needs the first pass only for a field without a fixed one.
+  const bool need_range =
+      !style.range && !style.range_per_frame && !render::default_range(style.field, physics.dim);
+  if (need_range || follow) {
     auto sim = make_simulation(physics);
     Progress progress(o.quiet);
     scans.reserve(times.size());
     stopped =
         !for_each_frame(*sim, times, progress, "pass 1 of 2 (range, camera)", [&](std::size_t) {
           sim->snapshot(snap);
-          scans.push_back(scan(snap, style));
+          scans.push_back(scan(snap, style, need_range));
         });
     progress.done();
     if (!stopped) {
-      if (!style.range) style.range = fixed_range(scans, style.scale);
+      if (need_range) style.range = fixed_range(scans, style.scale);
       if (follow)
         shots = camera_path(scans, physics.dim, double(view.width) / view.height, view.margin,
                             std::max(1, static_cast<int>(o.movie.fps / 2)));

@@ -19,8 +19,12 @@ struct FrontMovieOptions {
   double t_start = 1;
   render::MovieOptions movie{.width = 1280, .height = 720};
   std::string camera = "follow";  // follow: the front, smoothly; fixed: the whole periodic box
-  std::string colour_by = "speed", scale = "auto", colormap = "viridis", background = "dark";
-  std::vector<double> range;  // MIN MAX; empty: spans every frame's 1-99 percentiles
+  // auto: scaled-speed for a kick (one colour is one v / v_rms in every frame), else speed.
+  std::string colour_by = "auto", scale = "auto", colormap = "magma", background = "light";
+  // MIN MAX; empty: the scaled fields' fixed range, else spans every frame's 1-99 percentiles.
+  std::vector<double> range;
+  bool range_per_frame = false;  // each frame its own 1-99 percentiles
+  bool inset = false;            // the profile across the band, bottom left
   bool show_inactive = false;
   double slab = 6;  // 3D: a cut through the shell shows the band, the whole shell only its skin
   double azimuth = 30, elevation = 20;

@@ -7,9 +7,10 @@
 
 namespace gs::render {
 
-std::vector<double> field_values(const Snapshot& s, Field f) {
+std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms) {
   const std::size_t n = s.size();
   std::vector<double> v(n);
+  if (v_rms) *v_rms = 0;
   if (f == Field::FirstCollision) {
     if (n > 0 && s.first_collision.size() != n)
       throw UserError("snapshot has no first_collision column; cannot colour by first collision");
@@ -19,22 +20,76 @@ std::vector<double> field_values(const Snapshot& s, Field f) {
   }
   if (n > 0 && !s.has_velocity())
     throw UserError(std::string("snapshot has no velocities (velo); cannot colour by ") +
-                    (f == Field::Speed ? "speed" : "radial velocity"));
-  if (f == Field::Speed) {
+                    field_name(f));
+  if (f == Field::Speed || f == Field::ScaledSpeed) {
     for (std::size_t i = 0; i < n; ++i) v[i] = s.velocity[i].norm();
-    return v;
+  } else {
+    Eigen::Vector3d com = Eigen::Vector3d::Zero(), drift = Eigen::Vector3d::Zero();
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.active[i]) com += s.position[i], drift += s.velocity[i], ++m;
+    if (m) com /= static_cast<double>(m), drift /= static_cast<double>(m);
+    // The scaled field is taken relative to the band's drift, as the radial profiles are
+    // (sim/observables.h): the kick leaves a net momentum of the order of v_rms itself.
+    if (f == Field::RadialVelocity) drift.setZero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d r = s.position[i] - com;
+      const double len = r.norm();
+      v[i] = len > 0 ? (s.velocity[i] - drift).dot(r) / len : 0;
+    }
   }
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  if (!is_scaled(f)) return v;
+  double sum = 0;
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (s.active[i]) com += s.position[i], ++m;
-  if (m) com /= static_cast<double>(m);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d r = s.position[i] - com;
-    const double len = r.norm();
-    v[i] = len > 0 ? s.velocity[i].dot(r) / len : 0;
-  }
+    if (s.active[i]) sum += s.velocity[i].squaredNorm(), ++m;
+  if (m == 0)  // before the first collision: the kicked particle alone moves
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.velocity[i].squaredNorm() > 0) sum += s.velocity[i].squaredNorm(), ++m;
+  const double rms = m ? std::sqrt(sum / static_cast<double>(m)) : 0;
+  if (v_rms) *v_rms = rms;
+  if (rms > 0)
+    for (double& x : v) x /= rms;
   return v;
+}
+
+Field default_field(const Snapshot& s) {
+  if (!s.has_velocity()) return Field::Speed;  // field_values then names what is missing
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (!s.active[i] && s.velocity[i].squaredNorm() == 0) return Field::ScaledSpeed;
+  return Field::Speed;
+}
+
+std::vector<Field> available_fields(const Snapshot& s) {
+  std::vector<Field> out;
+  for (Field f : all_fields())
+    if (needs_velocity(f) ? s.size() == 0 || s.has_velocity()
+                          : s.size() == 0 || s.first_collision.size() == s.size())
+      out.push_back(f);
+  return out;
+}
+
+Field choose_field(const std::string& name, const Snapshot& s, const std::string& file) {
+  if (name == "auto") {
+    const Field f = default_field(s);
+    if (s.size() > 0 && !s.has_velocity())
+      throw UserError("snapshot '" + file +
+                      "' has no velocities (no velo property); cannot colour by " + field_name(f));
+    return f;
+  }
+  std::string list;
+  for (Field f : available_fields(s)) {
+    if (name == field_name(f)) return f;
+    list += (list.empty() ? "" : ", ") + std::string(field_name(f));
+  }
+  for (Field f : all_fields())
+    if (name == field_name(f))
+      throw UserError(
+          "snapshot '" + file + "' has no " +
+          (needs_velocity(f) ? "velocities (no velo property)" : "first_collision property") +
+          "; cannot colour by " + name + " (it has: " + (list.empty() ? "none" : list) + ")");
+  throw UserError("unknown --color-by '" + name + "'; snapshot '" + file + "' can be coloured by " +
+                  (list.empty() ? "nothing" : list));
 }
 
 std::pair<double, double> auto_range(const std::vector<double>& values,

@@ -6,25 +6,16 @@
 #include <cstring>
 #include <optional>
 
+#include "render/annotations.h"
 #include "render/colormap.h"
 #include "render/field.h"
 #include "render/gl_api.h"
-#include "render/occlusion.h"
 #include "sim/error.h"
 
 namespace gs::render {
 namespace {
 
 constexpr int kHardSizeLimit = 16384;
-
-// Per-particle data on the GPU: centre relative to the camera origin, radius, colour; stored
-// once for each corner of the particle's quad. llvmpipe runs an instanced draw as one small draw
-// per instance, several times slower than this single indexed draw, which costs 4x the memory.
-struct Instance {
-  float x, y, z, r;
-  std::uint8_t rgba[4];
-};
-static_assert(sizeof(Instance) == 20);
 
 // 2D discs as point sprites: llvmpipe rasterizes a point as one rectangle, where a quad costs
 // two triangle set-ups, which dominate when 2.5e5 discs are a pixel or two wide.
@@ -144,9 +135,9 @@ void main() {
 
 // The disc fragment shader's coverage rule on the CPU: pixel centres at half-integers, the
 // picture's centre at the camera origin, y up.
-void splat_discs(Image& img, const std::vector<Instance>& discs, double ppu) {
+void splat_discs(Image& img, const std::vector<Sprite>& discs, double ppu) {
   const double cx = img.width / 2.0, cy = img.height / 2.0;
-  for (const Instance& d : discs) {
+  for (const Sprite& d : discs) {
     const double X = cx + d.x * ppu, Y = cy - d.y * ppu, rad = d.r * ppu;
     const int x0 = std::max(0, static_cast<int>(std::floor(X - rad - 1)));
     const int x1 = std::min(img.width - 1, static_cast<int>(std::ceil(X + rad + 1)));
@@ -164,49 +155,12 @@ void splat_discs(Image& img, const std::vector<Instance>& discs, double ppu) {
   }
 }
 
-struct Palette {
-  Rgb8 background, text, inactive;
-};
-
-Palette palette(Background b) {
-  if (b == Background::Dark) return {{14, 14, 18}, {235, 235, 235}, {72, 72, 78}};
-  return {{255, 255, 255}, {20, 20, 20}, {206, 206, 206}};
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 }  // namespace
-
-Rgb8 overlay_colour(std::size_t index) {
-  static const Rgb8 k[] = {{0, 114, 178}, {230, 159, 0},  {0, 158, 115}, {204, 121, 167},
-                           {213, 94, 0},  {86, 180, 233}, {240, 228, 66}};
-  return k[index % std::size(k)];
-}
 
 void check_size(int width, int height, int limit) {
   if (width <= 0 || height <= 0 || width > limit || height > limit)
     throw UserError("image size " + std::to_string(width) + "x" + std::to_string(height) +
                     " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
-}
-
-void check_style(const Style& style) {
-  Colormap::by_name(style.colormap);
-  if (style.range) {
-    const auto [lo, hi] = *style.range;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || lo >= hi)
-      throw UserError("colour range MIN " + fmt("%g", lo) + " must be below MAX " + fmt("%g", hi));
-    if (style.scale == Scale::Log && lo <= 0)
-      throw UserError("a logarithmic colour range needs MIN > 0 (got " + fmt("%g", lo) + ")");
-  }
-  if (style.scale == Scale::Log && style.field == Field::RadialVelocity)
-    throw UserError("radial velocity takes both signs; it cannot be coloured on a log scale");
-  if (!(style.percentile_low >= 0 && style.percentile_low < style.percentile_high &&
-        style.percentile_high <= 100))
-    throw UserError("colour percentiles must satisfy 0 <= low < high <= 100");
 }
 
 struct Renderer::Impl {
@@ -219,46 +173,11 @@ struct Renderer::Impl {
   int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
   int max_size = 0, max_samples = 0;
   float max_point_size = 1;
-  std::vector<Instance> instances;  // one per particle
-  std::vector<Instance> vertices;   // four per particle for quads
-  std::vector<Instance> sorted;
-  std::vector<std::uint32_t> bucket_of, bucket_start;
-  OcclusionBuffer occlusion;
+  std::vector<Sprite> vertices;  // four per particle for quads
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;
   std::string painter_font;
   RenderInfo info;
-
-  // Sorts the spheres nearest first (bucket sort on the nearest depth) and keeps those the
-  // occlusion buffer cannot prove hidden.
-  void cull_occluded(const Camera& cam) {
-    const std::size_t n = instances.size();
-    if (n == 0) return;
-    const double fy = cam.height / (2 * cam.tan_half_y), fx = cam.width / (2 * cam.tan_half_x);
-    constexpr std::uint32_t kBuckets = 4096;
-    const double scale = kBuckets / (cam.far - cam.near);
-    bucket_of.resize(n);
-    bucket_start.assign(kBuckets + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Instance& v = instances[i];
-      const double depth =
-          -(cam.view.row(2).head<3>().dot(Eigen::Vector3d(v.x, v.y, v.z)) + cam.view(2, 3));
-      const double b = std::clamp((depth - v.r - cam.near) * scale, 0.0, kBuckets - 1.0);
-      bucket_of[i] = static_cast<std::uint32_t>(b);
-      ++bucket_start[bucket_of[i] + 1];
-    }
-    for (std::uint32_t b = 0; b < kBuckets; ++b) bucket_start[b + 1] += bucket_start[b];
-    sorted.resize(n);
-    for (std::size_t i = 0; i < n; ++i) sorted[bucket_start[bucket_of[i]]++] = instances[i];
-    occlusion.reset(cam.width, cam.height);
-    instances.clear();
-    for (const Instance& v : sorted) {
-      const Eigen::Vector4d e = cam.view * Eigen::Vector4d(v.x, v.y, v.z, 1);
-      if (occlusion.test_and_insert(
-              sphere_footprint(e.head<3>(), v.r, fx, fy, cam.width, cam.height)))
-        instances.push_back(v);
-    }
-  }
 
   OverlayPainter& overlay_painter(const std::string& font) {
     if (!painter || painter_font != font) {
@@ -323,9 +242,9 @@ struct Renderer::Impl {
     gl.BindVertexArray(vao);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
-    gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), nullptr);
-    gl.VertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance),
-                           reinterpret_cast<const void*>(offsetof(Instance, rgba)));
+    gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Sprite), nullptr);
+    gl.VertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Sprite),
+                           reinterpret_cast<const void*>(offsetof(Sprite, rgba)));
     gl.EnableVertexAttribArray(0);
     gl.EnableVertexAttribArray(1);
     GS_CHECK(gl.GetError() == GL_NO_ERROR);
@@ -374,15 +293,15 @@ struct Renderer::Impl {
     fbo_w = w, fbo_h = h, fbo_samples = samples;
   }
 
-  void upload(bool quad_indices) {
-    const std::vector<Instance>* data = &instances;
+  void upload(const std::vector<Sprite>& sprites, bool quad_indices) {
+    const std::vector<Sprite>* data = &sprites;
     if (quad_indices) {
       vertices.clear();
-      vertices.reserve(instances.size() * 4);
-      for (const Instance& v : instances) vertices.insert(vertices.end(), 4, v);
+      vertices.reserve(sprites.size() * 4);
+      for (const Sprite& v : sprites) vertices.insert(vertices.end(), 4, v);
       data = &vertices;
     }
-    const std::size_t quads = instances.size();
+    const std::size_t quads = sprites.size();
     if (quad_indices && quads > ibo_quads) {
       // Two triangles per quad; the indices never change, so they grow but are never rewritten.
       ibo_quads = std::max(quads, ibo_quads * 3 / 2);
@@ -396,7 +315,7 @@ struct Renderer::Impl {
       gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)),
                     idx.data(), GL_STATIC_DRAW);
     }
-    const std::size_t bytes = data->size() * sizeof(Instance);
+    const std::size_t bytes = data->size() * sizeof(Sprite);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
     // Orphan and refill: the driver need not wait for the previous frame's draw.
     if (bytes > vbo_bytes) vbo_bytes = std::max(bytes, vbo_bytes * 3 / 2);
@@ -432,138 +351,37 @@ const char* Renderer::backend_name() const {
   return impl_->ctx->backend_name();
 }
 
+Scene Renderer::scene(const std::vector<const Snapshot*>& snaps, const Style& style,
+                      const View& view) {
+  check_size(view.width, view.height, impl_->max_size);
+  return build_scene(snaps, style, view, impl_->overlay_painter(style.font));
+}
+
 Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& style,
                        const View& view) {
+  const Scene sc = scene(snaps, style, view);
+  Image img = draw(sc);
+  const Annotations a = annotate(img, sc, impl_->overlay_painter(style.font));
+  impl_->info.colorbar = a.colorbar;
+  impl_->info.inset = a.inset;
+  impl_->info.panels = a.panels;
+  return img;
+}
+
+Image Renderer::draw(const Scene& sc) {
   Impl& m = *impl_;
   GLApi& gl = m.gl;
-  check_size(view.width, view.height, m.max_size);
-  check_style(style);
-  GS_CHECK(!snaps.empty());
-  const Colormap cmap = Colormap::by_name(style.colormap);
-  const int dim = snaps.front()->info.dim;
-  for (const Snapshot* s : snaps)
-    if (s->info.dim != dim)
-      throw UserError("snapshots of different dimensions cannot share a picture");
-  const bool three_d = dim == 3;
-  const bool overlay = snaps.size() > 1;
-  const Palette pal = palette(style.background);
+  const Camera& cam = sc.camera;
+  const Style& style = sc.style;
+  const Palette& pal = sc.palette;
+  const bool three_d = sc.dim == 3;
+  check_size(cam.width, cam.height, m.max_size);
+  const int width = cam.width, height = cam.height;
   m.info = RenderInfo{};
-
-  // Colours need the field only for a single snapshot; the overlay colours by time.
-  std::vector<double> values;
-  if (!overlay) {
-    const Snapshot& s = *snaps.front();
-    values = field_values(s, style.field);
-    std::vector<std::uint8_t> mask = s.active;
-    if (std::find(mask.begin(), mask.end(), 1) == mask.end()) mask.assign(s.size(), 1);
-    m.info.range = style.range ? *style.range
-                               : auto_range(values, mask, style.scale, style.percentile_low,
-                                            style.percentile_high);
-  }
-
-  std::string bar_label = field_label(style.field);
-  if (style.scale == Scale::Log) bar_label += " (log)";
-
-  auto time_text = [](const SnapshotInfo& in) {
-    std::string t = "t = " + fmt("%.6g", in.time);
-    if (in.density)
-      t += "   t_paper = " +
-           fmt("%.6g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
-    return t;
-  };
-  std::vector<std::pair<Rgb8, std::string>> legend;
-  for (std::size_t k = 0; overlay && k < snaps.size(); ++k)
-    legend.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
-  // A framed (not explicitly centred) scene keeps clear of the colour bar or legend on the
-  // right: it is fitted into the rest of the width. A 2D legend goes above the scene instead
-  // when that leaves more room (square or tall pictures, a legend too wide to sit beside it).
-  int reserve = 0, reserve_top = 0;
-  if (!view.centre) {
-    auto painter = [&]() -> OverlayPainter& { return m.overlay_painter(style.font); };
-    if (style.colorbar && !overlay)
-      reserve =
-          painter().colorbar_width(view.width, view.height, m.info.range, style.scale, bar_label);
-    else if (style.legend && overlay)
-      reserve = painter().legend_width(view.width, view.height, legend);
-    if (style.legend && overlay && !three_d) {
-      const int top = painter().legend_height(view.width, view.height, legend.size());
-      if (top < view.height / 2 &&
-          std::min(view.width, view.height - top) > std::min(view.width - reserve, view.height)) {
-        reserve = 0;
-        reserve_top = top;
-      }
-    }
-    if (reserve >= view.width / 2) reserve = 0;
-  }
-
-  // Framing: the active particles of all snapshots, or the box.
-  Eigen::AlignedBox3d fit;
-  double r_max = 0;
-  double box = 0;
-  for (const Snapshot* s : snaps) box = std::max(box, s->info.box);
-  const bool wrap = view.framing == Framing::Box && box > 0;
-  auto wrapped = [&](Eigen::Vector3d p) {
-    if (wrap)
-      for (int k = 0; k < std::min(dim, 3); ++k) p[k] -= box * std::floor(p[k] / box);
-    return p;
-  };
-  if (wrap) {
-    fit.extend(Eigen::Vector3d::Zero());
-    fit.extend(Eigen::Vector3d(box, dim >= 2 ? box : 0, dim == 3 ? box : 0));
-  }
-  for (int pass = 0; pass < 2 && fit.isEmpty(); ++pass)
-    for (const Snapshot* s : snaps)
-      for (std::size_t i = 0; i < s->size(); ++i)
-        if (pass == 1 || s->active[i]) fit.extend(wrapped(s->position[i]));
-  for (const Snapshot* s : snaps)
-    for (double r : s->radius) r_max = std::max(r_max, r);
-  Camera cam;
-  if (three_d) {
-    // Bounding sphere about the box's centre: tighter than the box's corners for a shell.
-    const Eigen::Vector3d c = fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
-    double r2 = 0;
-    const bool all = std::none_of(snaps.begin(), snaps.end(), [](const Snapshot* s) {
-      return std::find(s->active.begin(), s->active.end(), 1) != s->active.end();
-    });
-    if (wrap)
-      r2 = (fit.sizes() / 2).squaredNorm();
-    else
-      for (const Snapshot* s : snaps)
-        for (std::size_t i = 0; i < s->size(); ++i)
-          if (all || s->active[i]) r2 = std::max(r2, (s->position[i] - c).squaredNorm());
-    cam = make_camera_3d(c, std::sqrt(r2) + r_max, view);
-    if (reserve > 0) {
-      View narrow = view;
-      narrow.width -= reserve;
-      const Camera fitted = make_camera_3d(c, std::sqrt(r2) + r_max, narrow);
-      View shifted = view;
-      shifted.distance = fitted.distance;
-      const double ppu = view.height / (2 * fitted.distance * fitted.tan_half_y);
-      shifted.centre = c + fitted.view.block<1, 3>(0, 0).transpose() * (reserve / 2.0 / ppu);
-      cam = make_camera_3d(c, std::sqrt(r2) + r_max, shifted);
-    }
-  } else {
-    cam = make_camera_2d(fit, r_max, view);
-    if (reserve > 0) {
-      View narrow = view;
-      narrow.width -= reserve;
-      cam = make_camera_2d(fit, r_max, narrow);
-      const double ppu = cam.pixels_per_unit();
-      cam.width = view.width;
-      cam.half_w = view.width / (2 * ppu);
-      cam.origin.x() += reserve / (2 * ppu);
-    }
-    if (reserve_top > 0) {
-      View low = view;
-      low.height -= reserve_top;
-      cam = make_camera_2d(fit, r_max, low);
-      const double ppu = cam.pixels_per_unit();
-      cam.height = view.height;
-      cam.half_h = view.height / (2 * ppu);
-      cam.origin.y() += reserve_top / (2 * ppu);  // world y points up the picture
-    }
-  }
+  m.info.range = sc.range;
   m.info.camera = cam;
+  m.info.drawn = sc.sprites.size();
+  m.info.v_rms = sc.v_rms;
 
   // 2D discs below splat_below_px in radius are drawn on the CPU after readback: llvmpipe spends
   // about half a microsecond of CPU per primitive however small, so a paper-size frame (2.5e5
@@ -571,57 +389,24 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
   // rule. Larger discs go through GL as sprites up to the driver's largest point size, as quads
   // beyond. GL drops a point whose centre is off the viewport, so sprites are drawn into a
   // framebuffer larger by a margin of one sprite radius and the picture read from its middle.
-  const double rad_px = r_max * cam.pixels_per_unit();
+  const double rad_px = sc.r_max * cam.pixels_per_unit();
   const bool splat = !three_d && rad_px < style.splat_below_px;
   const double sprite_px = 2 * (rad_px + 1);
   const int margin = static_cast<int>(std::ceil(sprite_px / 2)) + 1;
   const bool points = !three_d && !splat && sprite_px <= m.max_point_size &&
-                      std::max(view.width, view.height) + 2 * margin <= m.max_size;
+                      std::max(width, height) + 2 * margin <= m.max_size;
   const int pad = points ? margin : 0;
-
-  // Instances: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
-  // the 2D discs of active ones lie on top.
-  m.instances.clear();
-  auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c) {
-    if (!cam.visible(p, r)) return;
-    const Eigen::Vector3d d = p - cam.origin;
-    const Instance v{static_cast<float>(d.x()),
-                     static_cast<float>(d.y()),
-                     static_cast<float>(three_d ? d.z() : 0.0),
-                     static_cast<float>(r),
-                     {c[0], c[1], c[2], 255}};
-    m.instances.push_back(v);
-  };
-  if (style.show_inactive) {
-    const Snapshot& s = *snaps.back();
-    for (std::size_t i = 0; i < s.size(); ++i)
-      if (!s.active[i]) push(wrapped(s.position[i]), s.radius[i], pal.inactive);
-  }
-  for (std::size_t k = 0; k < snaps.size(); ++k) {
-    const Snapshot& s = *snaps[k];
-    const Rgb8 time_colour = overlay_colour(k);
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (!s.active[i]) continue;
-      Rgb8 c = time_colour;
-      if (!overlay)
-        c = std::isnan(values[i]) ? pal.inactive
-                                  : cmap.at8(normalise(values[i], m.info.range, style.scale));
-      push(wrapped(s.position[i]), s.radius[i], c);
-    }
-  }
-  if (three_d && style.occlusion_cull) m.cull_occluded(cam);
-  m.info.drawn = m.instances.size();
 
   const int samples = three_d ? std::min(std::max(style.msaa, 0), m.max_samples) : 0;
   m.ctx->make_current();
-  const int fb_w = view.width + 2 * pad, fb_h = view.height + 2 * pad;
+  const int fb_w = width + 2 * pad, fb_h = height + 2 * pad;
   m.ensure_targets(fb_w, fb_h, samples);
   gl.BindFramebuffer(GL_FRAMEBUFFER, m.fbo);
   gl.Viewport(0, 0, fb_w, fb_h);
   gl.ClearColor(pal.background[0] / 255.f, pal.background[1] / 255.f, pal.background[2] / 255.f, 1);
   gl.ClearDepth(1.0);
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (!splat) m.upload(!points);
+  if (!splat) m.upload(sc.sprites, !points);
   gl.BindVertexArray(m.vao);
   if (!three_d) {
     gl.Disable(GL_DEPTH_TEST);
@@ -649,53 +434,34 @@ Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& s
     gl.UniformMatrix4fv(gl.GetUniformLocation(m.sphere_prog, "view"), 1, GL_FALSE, view_f.data());
     gl.UniformMatrix4fv(gl.GetUniformLocation(m.sphere_prog, "proj"), 1, GL_FALSE, proj_f.data());
     gl.Uniform1f(gl.GetUniformLocation(m.sphere_prog, "px_per_depth"),
-                 static_cast<float>(2 * cam.tan_half_y / view.height));
+                 static_cast<float>(2 * cam.tan_half_y / height));
     const Eigen::Vector3f light = Eigen::Vector3f(-0.4f, 0.55f, 0.75f).normalized();
     gl.Uniform3f(gl.GetUniformLocation(m.sphere_prog, "light"), light.x(), light.y(), light.z());
   }
-  if (splat || m.instances.empty()) {
+  if (splat || sc.sprites.empty()) {
   } else if (points)
-    gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m.instances.size()));
+    gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(sc.sprites.size()));
   else
-    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.instances.size() * 6), GL_UNSIGNED_INT,
+    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(sc.sprites.size() * 6), GL_UNSIGNED_INT,
                     nullptr);
   if (samples > 0) {
     gl.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m.resolve_fbo);
-    gl.BlitFramebuffer(0, 0, view.width, view.height, 0, 0, view.width, view.height,
-                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.resolve_fbo);
   }
-  Image img(view.width, view.height);
+  Image img(width, height);
   m.readback.resize(img.rgba.size());
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(pad, pad, view.width, view.height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());
+  gl.ReadPixels(pad, pad, width, height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());
   if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
     throw UserError("OpenGL error " + std::to_string(e) + " while rendering " +
-                    std::to_string(view.width) + "x" + std::to_string(view.height));
-  const std::size_t row = static_cast<std::size_t>(view.width) * 4;
-  for (int y = 0; y < view.height; ++y)  // GL's rows run bottom-up
-    std::memcpy(img.pixel(0, y), m.readback.data() + (view.height - 1 - y) * row, row);
-  if (splat) splat_discs(img, m.instances, cam.pixels_per_unit());
-
-  // Overlays, on the CPU: text and the colour bar come out identical on every driver.
-  OverlayPainter* painter = nullptr;
-  const bool any_overlay = (style.colorbar && !overlay) || style.time_label ||
-                           (style.legend && overlay) || style.scale_bar;
-  if (!any_overlay) return img;
-  painter = &m.overlay_painter(style.font);
-  const OverlayColours oc{pal.text, pal.background};
-  if (overlay) {
-    if (style.legend) painter->legend(img, legend, oc);
-  } else {
-    if (style.colorbar) {
-      m.info.colorbar = painter->colorbar(img, cmap, m.info.range, style.scale, bar_label, oc);
-    }
-    if (style.time_label) painter->top_left_label(img, time_text(snaps.front()->info), oc);
-  }
-  // In 3D, cam.half_w is the visible half width at the orbit centre's distance.
-  if (style.scale_bar) painter->scale_bar(img, cam.pixels_per_unit(), oc);
+                    std::to_string(width) + "x" + std::to_string(height));
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  for (int y = 0; y < height; ++y)  // GL's rows run bottom-up
+    std::memcpy(img.pixel(0, y), m.readback.data() + (height - 1 - y) * row, row);
+  if (splat) splat_discs(img, sc.sprites, cam.pixels_per_unit());
   return img;
 }
 

@@ -9,6 +9,7 @@
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/overlay.h"
+#include "render/scene.h"
 #include "render/style.h"
 #include "render/view.h"
 #include "sim/snapshot.h"
@@ -21,7 +22,10 @@ struct RenderInfo {
   std::pair<double, double> range{0, 1};  // colour range actually used (single snapshot)
   std::size_t drawn = 0;                  // particles that survived culling
   Camera camera;
-  BarRect colorbar;  // empty if none was drawn
+  BarRect colorbar;          // empty if none was drawn
+  Rect inset;                // empty if none was drawn
+  std::vector<Rect> panels;  // every overlay's panel (what a measure of the scene leaves out)
+  double v_rms = 0;          // the scale of a scaled field
 };
 
 class Renderer {
@@ -40,6 +44,11 @@ class Renderer {
     return render(std::vector<const Snapshot*>{&s}, style, view);
   }
 
+  // The steps of render(): the scene (CPU only; the painter measures the overlays) and its
+  // picture without overlays.
+  Scene scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view);
+  Image draw(const Scene& scene);
+
   const RenderInfo& last() const;
   // Largest width or height this context can render (and at most 16384).
   int max_size() const;
@@ -50,11 +59,7 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// The colour of each snapshot in the multi-time overlay (Okabe-Ito, safe for colour blindness).
-Rgb8 overlay_colour(std::size_t index);
 // Throws UserError unless 0 < width, height <= limit.
 void check_size(int width, int height, int limit);
-// Throws UserError unless the style's words and range make sense.
-void check_style(const Style& style);
 
 }  // namespace gs::render

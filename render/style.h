@@ -4,21 +4,32 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace gs::render {
 
-// Per-particle quantity mapped through the colormap.
-enum class Field { Speed, RadialVelocity, FirstCollision };
+// Per-particle quantity mapped through the colormap. The scaled ones divide by v_rms(t) of the
+// active particles, the paper's scaling variable v t^(1-alpha) up to a constant (Figs. 4b, 5b):
+// their distribution hardly moves with time, so one fixed range means one scaled speed in
+// every frame of a movie.
+enum class Field { Speed, RadialVelocity, FirstCollision, ScaledSpeed, ScaledRadialVelocity };
 enum class Scale { Linear, Log };
 enum class Background { Light, Dark };
 
 struct Style {
-  std::string colormap = "viridis";
+  // Magma on white: its low end (black) and its high end (cream) both stand out from the
+  // background, and the band's edges keep their colours through a movie's 4:2:0 chroma
+  // subsampling (issue 18's edge contrast of the Fig. 1 job's last frame at 1280x720, H.264
+  // CRF 18: magma/light +0.16, viridis/light +0.11, viridis/dark +0.15 but its low end is lost
+  // on near-black).
+  std::string colormap = "magma";
   Field field = Field::Speed;
   Scale scale = Scale::Linear;
-  // Fixed colour range; when absent, robust percentiles of the shown particles' values, so one
-  // outlier (the kicked particle early on) does not wash out the picture.
+  // Fixed colour range; when absent, the field's default_range() for the scaled fields, else
+  // robust percentiles of the shown particles' values, so one outlier (the kicked particle
+  // early on) does not wash out the picture.
   std::optional<std::pair<double, double>> range;
+  bool range_per_frame = false;  // percentiles even for a field with a default range
   double percentile_low = 1, percentile_high = 99;
   bool show_inactive = false;  // inactive particles in a faint neutral colour
   Background background = Background::Light;
@@ -26,15 +37,28 @@ struct Style {
   bool time_label = true;
   bool scale_bar = false;     // a length in particle diameters (3D: at the centre's distance)
   bool legend = true;         // multi-snapshot overlay: one colour per time
+  bool inset = false;         // density and mean scaled speed against distance, bottom left
   int msaa = 4;               // samples per pixel for 3D spheres (2D discs antialias in the shader)
   double splat_below_px = 2;  // 2D discs of smaller radius (pixels) are drawn on the CPU
   bool occlusion_cull = true;  // 3D: skip spheres hidden behind nearer ones (exact)
   std::string font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 };
 
-// Parses the command-line words; UserError naming the word otherwise.
-Field parse_field(const std::string& name);            // speed | radial-velocity | first-collision
+// Parses the command-line words; UserError naming the word (and listing the fields) otherwise.
+Field parse_field(const std::string& name);
 Background parse_background(const std::string& name);  // light | dark
-const char* field_label(Field f);
+const char* field_name(Field f);                       // the command-line word
+const char* field_label(Field f);                      // the colour bar's title
+// Every field, in the order the help lists them.
+const std::vector<Field>& all_fields();
+bool is_scaled(Field f);
+// --scale auto|lin|log: auto is log for plain speed and first-collision times (they span
+// decades in a band), linear for the scaled and signed fields.
+Scale parse_scale(const std::string& name, Field f);
+bool needs_velocity(Field f);
+
+// The fixed range of a scaled field: about the 5-95% span of the collapsed distribution, which
+// is nearly the same at every time (see style.cpp for where the numbers come from).
+std::optional<std::pair<double, double>> default_range(Field f, int dim);
 
 }  // namespace gs::render

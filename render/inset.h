@@ -1,0 +1,22 @@
+#pragma once
+// The inset profile across the band: number density of the active particles and their mean
+// (scaled) speed against distance from their centre of mass, from sim/observables' radial
+// profile. Computed from the whole snapshot, so a 3D slab picture shows the whole shell's profile.
+#include <vector>
+
+#include "sim/snapshot.h"
+
+namespace gs::render {
+
+struct InsetData {
+  std::vector<double> r;        // shell centres, diameters from the centre of mass
+  std::vector<double> density;  // active particles per unit area (2D) or volume (3D)
+  std::vector<double> speed;    // mean speed over v_rms (or plain when v_rms = 0); NaN if empty
+  double r_max = 0;             // outer edge of the last shell
+  bool scaled = false;          // speed is over v_rms
+};
+
+// Empty (no shells) when no particle is active. v_rms > 0 scales the speeds.
+InsetData inset_profile(const Snapshot& s, double v_rms, int bins = 40);
+
+}  // namespace gs::render

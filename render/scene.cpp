@@ -1,0 +1,265 @@
+#include "render/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "render/field.h"
+#include "render/occlusion.h"
+#include "render/overlay.h"
+#include "sim/error.h"
+
+namespace gs::render {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string time_text(const SnapshotInfo& in) {
+  std::string t = "t = " + fmt("%.6g", in.time);
+  if (in.density)
+    t += "   t_paper = " +
+         fmt("%.6g", in.time * in.speed.value_or(1.0) * std::pow(*in.density, 1.0 / in.dim));
+  return t;
+}
+
+bool any_active(const Snapshot& s) {
+  return std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
+}
+
+// Sorts the spheres nearest first (bucket sort on the nearest depth) and keeps those the
+// occlusion buffer cannot prove hidden.
+void cull_occluded(Scene& sc) {
+  const Camera& cam = sc.camera;
+  const std::size_t n = sc.sprites.size();
+  if (n == 0) return;
+  const double fy = cam.height / (2 * cam.tan_half_y), fx = cam.width / (2 * cam.tan_half_x);
+  constexpr std::uint32_t kBuckets = 4096;
+  const double scale = kBuckets / (cam.far - cam.near);
+  std::vector<std::uint32_t> bucket_of(n), bucket_start(kBuckets + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Sprite& v = sc.sprites[i];
+    const double depth =
+        -(cam.view.row(2).head<3>().dot(Eigen::Vector3d(v.x, v.y, v.z)) + cam.view(2, 3));
+    const double b = std::clamp((depth - v.r - cam.near) * scale, 0.0, kBuckets - 1.0);
+    bucket_of[i] = static_cast<std::uint32_t>(b);
+    ++bucket_start[bucket_of[i] + 1];
+  }
+  for (std::uint32_t b = 0; b < kBuckets; ++b) bucket_start[b + 1] += bucket_start[b];
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[bucket_start[bucket_of[i]]++] = static_cast<std::uint32_t>(i);
+  OcclusionBuffer occlusion;
+  occlusion.reset(cam.width, cam.height);
+  std::vector<Sprite> kept;
+  std::vector<float> kept_shade;
+  for (std::uint32_t i : order) {
+    const Sprite& v = sc.sprites[i];
+    const Eigen::Vector4d e = cam.view * Eigen::Vector4d(v.x, v.y, v.z, 1);
+    if (occlusion.test_and_insert(
+            sphere_footprint(e.head<3>(), v.r, fx, fy, cam.width, cam.height))) {
+      kept.push_back(v);
+      kept_shade.push_back(sc.shade[i]);
+    }
+  }
+  sc.sprites = std::move(kept);
+  sc.shade = std::move(kept_shade);
+}
+
+}  // namespace
+
+Palette palette(Background b) {
+  if (b == Background::Dark) return {{14, 14, 18}, {235, 235, 235}, {72, 72, 78}};
+  return {{255, 255, 255}, {20, 20, 20}, {206, 206, 206}};
+}
+
+Rgb8 overlay_colour(std::size_t index) {
+  static const Rgb8 k[] = {{0, 114, 178}, {230, 159, 0},  {0, 158, 115}, {204, 121, 167},
+                           {213, 94, 0},  {86, 180, 233}, {240, 228, 66}};
+  return k[index % std::size(k)];
+}
+
+void check_style(const Style& style) {
+  Colormap::by_name(style.colormap);
+  if (style.range) {
+    const auto [lo, hi] = *style.range;
+    if (!std::isfinite(lo) || !std::isfinite(hi) || lo >= hi)
+      throw UserError("colour range MIN " + fmt("%g", lo) + " must be below MAX " + fmt("%g", hi));
+    if (style.scale == Scale::Log && lo <= 0)
+      throw UserError("a logarithmic colour range needs MIN > 0 (got " + fmt("%g", lo) + ")");
+  }
+  if (style.scale == Scale::Log &&
+      (style.field == Field::RadialVelocity || style.field == Field::ScaledRadialVelocity))
+    throw UserError("radial velocity takes both signs; it cannot be coloured on a log scale");
+  if (!(style.percentile_low >= 0 && style.percentile_low < style.percentile_high &&
+        style.percentile_high <= 100))
+    throw UserError("colour percentiles must satisfy 0 <= low < high <= 100");
+}
+
+Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view,
+                  OverlayPainter& painter) {
+  check_style(style);
+  GS_CHECK(!snaps.empty());
+  Scene sc;
+  sc.style = style;
+  const Colormap cmap = Colormap::by_name(style.colormap);
+  const int dim = sc.dim = snaps.front()->info.dim;
+  for (const Snapshot* s : snaps)
+    if (s->info.dim != dim)
+      throw UserError("snapshots of different dimensions cannot share a picture");
+  const bool three_d = dim == 3;
+  const bool overlay = sc.overlay = snaps.size() > 1;
+  const Palette pal = sc.palette = palette(style.background);
+
+  // Colours need the field only for a single snapshot; the overlay colours by time.
+  std::vector<double> values;
+  if (!overlay) {
+    const Snapshot& s = *snaps.front();
+    values = field_values(s, style.field, &sc.v_rms);
+    std::vector<std::uint8_t> mask = s.active;
+    if (!any_active(s)) mask.assign(s.size(), 1);
+    const auto fixed = style.range_per_frame ? std::nullopt : default_range(style.field, dim);
+    sc.range = style.range ? *style.range
+               : fixed     ? *fixed
+                           : auto_range(values, mask, style.scale, style.percentile_low,
+                                        style.percentile_high);
+    if (is_scaled(style.field) && sc.v_rms > 0) sc.bar_note = "v_rms = " + fmt("%.3g", sc.v_rms);
+    if (style.inset) sc.inset = inset_profile(s, is_scaled(style.field) ? sc.v_rms : 0);
+  }
+  sc.bar_label = field_label(style.field);
+  if (style.scale == Scale::Log) sc.bar_label += " (log)";
+  sc.time_text = time_text(snaps.front()->info);
+  for (std::size_t k = 0; overlay && k < snaps.size(); ++k)
+    sc.legend.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
+
+  // A framed (not explicitly centred) scene keeps clear of the colour bar or legend on the
+  // right: it is fitted into the rest of the width. A 2D legend goes above the scene instead
+  // when that leaves more room (square or tall pictures, a legend too wide to sit beside it).
+  int reserve = 0, reserve_top = 0, reserve_left = 0;
+  if (!view.centre) {
+    if (sc.inset) reserve_left = painter.inset_width(view.width, view.height);
+    if (style.colorbar && !overlay)
+      reserve = painter.colorbar_width(view.width, view.height, sc.range, style.scale, sc.bar_label,
+                                       sc.bar_note);
+    else if (style.legend && overlay)
+      reserve = painter.legend_width(view.width, view.height, sc.legend);
+    if (style.legend && overlay && !three_d) {
+      const int top = painter.legend_height(view.width, view.height, sc.legend.size());
+      if (top < view.height / 2 &&
+          std::min(view.width, view.height - top) > std::min(view.width - reserve, view.height)) {
+        reserve = 0;
+        reserve_top = top;
+      }
+    }
+    if (reserve + reserve_left >= view.width / 2) reserve = reserve_left = 0;
+  }
+  // The scene is fitted between the inset on the left and the colour bar on the right.
+  const int narrow_by = reserve + reserve_left, shift_px = reserve - reserve_left;
+
+  // Framing: the active particles of all snapshots, or the box.
+  Eigen::AlignedBox3d fit;
+  double box = 0;
+  for (const Snapshot* s : snaps) box = std::max(box, s->info.box);
+  const bool wrap = view.framing == Framing::Box && box > 0;
+  auto wrapped = [&](Eigen::Vector3d p) {
+    if (wrap)
+      for (int k = 0; k < std::min(dim, 3); ++k) p[k] -= box * std::floor(p[k] / box);
+    return p;
+  };
+  if (wrap) {
+    fit.extend(Eigen::Vector3d::Zero());
+    fit.extend(Eigen::Vector3d(box, dim >= 2 ? box : 0, dim == 3 ? box : 0));
+  }
+  for (int pass = 0; pass < 2 && fit.isEmpty(); ++pass)
+    for (const Snapshot* s : snaps)
+      for (std::size_t i = 0; i < s->size(); ++i)
+        if (pass == 1 || s->active[i]) fit.extend(wrapped(s->position[i]));
+  double r_max = 0;
+  for (const Snapshot* s : snaps)
+    for (double r : s->radius) r_max = std::max(r_max, r);
+  sc.r_max = r_max;
+  Camera& cam = sc.camera;
+  if (three_d) {
+    // Bounding sphere about the box's centre: tighter than the box's corners for a shell.
+    const Eigen::Vector3d c = fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
+    double r2 = 0;
+    const bool all =
+        std::none_of(snaps.begin(), snaps.end(), [](const Snapshot* s) { return any_active(*s); });
+    if (wrap)
+      r2 = (fit.sizes() / 2).squaredNorm();
+    else
+      for (const Snapshot* s : snaps)
+        for (std::size_t i = 0; i < s->size(); ++i)
+          if (all || s->active[i]) r2 = std::max(r2, (s->position[i] - c).squaredNorm());
+    cam = make_camera_3d(c, std::sqrt(r2) + r_max, view);
+    if (narrow_by > 0) {
+      View narrow = view;
+      narrow.width -= narrow_by;
+      const Camera fitted = make_camera_3d(c, std::sqrt(r2) + r_max, narrow);
+      View shifted = view;
+      shifted.distance = fitted.distance;
+      const double ppu = view.height / (2 * fitted.distance * fitted.tan_half_y);
+      shifted.centre = c + fitted.view.block<1, 3>(0, 0).transpose() * (shift_px / 2.0 / ppu);
+      cam = make_camera_3d(c, std::sqrt(r2) + r_max, shifted);
+    }
+  } else {
+    cam = make_camera_2d(fit, r_max, view);
+    if (narrow_by > 0) {
+      View narrow = view;
+      narrow.width -= narrow_by;
+      cam = make_camera_2d(fit, r_max, narrow);
+      const double ppu = cam.pixels_per_unit();
+      cam.width = view.width;
+      cam.half_w = view.width / (2 * ppu);
+      cam.origin.x() += shift_px / (2 * ppu);
+    }
+    if (reserve_top > 0) {
+      View low = view;
+      low.height -= reserve_top;
+      cam = make_camera_2d(fit, r_max, low);
+      const double ppu = cam.pixels_per_unit();
+      cam.height = view.height;
+      cam.half_h = view.height / (2 * ppu);
+      cam.origin.y() += reserve_top / (2 * ppu);  // world y points up the picture
+    }
+  }
+
+  // Sprites: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
+  // the 2D discs of active ones lie on top.
+  auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c, float shade) {
+    if (!cam.visible(p, r)) return;
+    const Eigen::Vector3d d = p - cam.origin;
+    sc.sprites.push_back({static_cast<float>(d.x()),
+                          static_cast<float>(d.y()),
+                          static_cast<float>(three_d ? d.z() : 0.0),
+                          static_cast<float>(r),
+                          {c[0], c[1], c[2], 255}});
+    sc.shade.push_back(shade);
+  };
+  const float none = std::nanf("");
+  if (style.show_inactive) {
+    const Snapshot& s = *snaps.back();
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (!s.active[i]) push(wrapped(s.position[i]), s.radius[i], pal.inactive, none);
+  }
+  for (std::size_t k = 0; k < snaps.size(); ++k) {
+    const Snapshot& s = *snaps[k];
+    const Rgb8 time_colour = overlay_colour(k);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!s.active[i]) continue;
+      if (overlay || std::isnan(values[i])) {
+        push(wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);
+        continue;
+      }
+      const double t = normalise(values[i], sc.range, style.scale);
+      push(wrapped(s.position[i]), s.radius[i], cmap.at8(t), static_cast<float>(t));
+    }
+  }
+  if (three_d && style.occlusion_cull) cull_occluded(sc);
+  return sc;
+}
+
+}  // namespace gs::render

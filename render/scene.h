@@ -1,0 +1,68 @@
+#pragma once
+// What a picture shows, decided on the CPU without GL: the camera framing the snapshots, the
+// particles that survive culling with their colours, and the data of the overlays. The Renderer
+// draws a Scene; annotate() paints its overlays on the drawn image. Tests and measures (the edge
+// contrast) read a Scene directly.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/colormap.h"
+#include "render/inset.h"
+#include "render/style.h"
+#include "render/view.h"
+#include "sim/snapshot.h"
+
+namespace gs::render {
+
+class OverlayPainter;
+
+struct Palette {
+  Rgb8 background, text, inactive;
+};
+Palette palette(Background b);
+
+// One particle as drawn: centre relative to the camera origin (kept in double until then, so
+// unwrapped coordinates far from 0 keep their precision on the GPU), radius, colour.
+struct Sprite {
+  float x, y, z, r;
+  std::uint8_t rgba[4];
+};
+static_assert(sizeof(Sprite) == 20);
+
+struct Scene {
+  int dim = 2;
+  Style style;
+  Camera camera;
+  Palette palette{};
+  // Drawing order: 2D inactive particles first, so active discs lie on top; 3D nearest first
+  // when occlusion culling is on.
+  std::vector<Sprite> sprites;
+  // Per sprite: its position on the colormap (0..1), NaN when not coloured by the field
+  // (inactive particles, the multi-time overlay).
+  std::vector<float> shade;
+  double r_max = 0;                       // largest radius of the snapshots
+  bool overlay = false;                   // several snapshots, one colour per time
+  std::pair<double, double> range{0, 1};  // colour range used (single snapshot)
+  double v_rms = 0;                       // scaled fields: the scale, shown beside the colour bar
+  std::string bar_label;                  // colour bar title
+  std::string bar_note;                   // under the colour bar ("v_rms = 0.0123"), may be empty
+  std::string time_text;                  // top-left label
+  std::vector<std::pair<Rgb8, std::string>> legend;  // overlay: colour and time
+  std::optional<InsetData> inset;
+};
+
+// UserError for an unknown colormap, MIN >= MAX, a field the snapshot lacks or snapshots of
+// different dimensions. The painter measures the overlays a fitted scene keeps clear of.
+Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view,
+                  OverlayPainter& painter);
+
+// The colour of each snapshot in the multi-time overlay (Okabe-Ito, safe for colour blindness).
+Rgb8 overlay_colour(std::size_t index);
+// Throws UserError unless the style's words and range make sense.
+void check_style(const Style& style);
+
+}  // namespace gs::render

@@ -1,0 +1,187 @@
+// The CPU half of rendering, without GL: what a scene holds for a snapshot (colour positions,
+// the scaled fields and their fixed range, the inset's profile), and the edge-contrast measure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "render/contrast.h"
+#include "render/field.h"
+#include "render/overlay.h"
+#include "render/scene.h"
+#include "sim/error.h"
+
+namespace gs::render {
+namespace {
+
+OverlayPainter& painter() {
+  static OverlayPainter p(Style{}.font);
+  return p;
+}
+
+// A ring of active discs between radii 20 and 30 moving outward, speed falling linearly from
+// `inner` at r = 20 to `outer` at r = 30, around a centre of particles at rest.
+Snapshot ring(double inner, double outer) {
+  Snapshot s;
+  s.info.dim = 2;
+  s.info.box = 100;
+  s.info.time = 50;
+  for (int layer = 0; layer <= 10; ++layer) {
+    const double r = 20 + layer;
+    const double v = inner + (outer - inner) * layer / 10.0;
+    const int n = static_cast<int>(2 * std::numbers::pi * r);
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * (i + 0.5 * layer) / n;
+      const Eigen::Vector3d d(std::cos(a), std::sin(a), 0);
+      s.position.push_back(Eigen::Vector3d(50, 50, 0) + r * d);
+      s.velocity.push_back(v * d);
+      s.radius.push_back(0.5);
+      s.active.push_back(1);
+    }
+  }
+  s.position.push_back({50, 50, 0});  // one at rest in the middle: a kick
+  s.velocity.push_back(Eigen::Vector3d::Zero());
+  s.radius.push_back(0.5);
+  s.active.push_back(0);
+  return s;
+}
+
+View view(int w = 320, int h = 240) {
+  View v;
+  v.width = w;
+  v.height = h;
+  return v;
+}
+
+double rms_of_active(const Snapshot& s) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.active[i]) sum += s.velocity[i].squaredNorm(), ++n;
+  return std::sqrt(sum / n);
+}
+
+TEST(Scene, ScaledSpeedIsOverTheActiveRmsAndUsesTheFixedRange) {
+  const Snapshot s = ring(2, 1);
+  EXPECT_EQ(default_field(s), Field::ScaledSpeed) << "a gas with particles at rest is a kick";
+  Style st;
+  st.field = Field::ScaledSpeed;
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  const double rms = rms_of_active(s);
+  EXPECT_NEAR(sc.v_rms, rms, 1e-12);
+  EXPECT_EQ(sc.range, *default_range(Field::ScaledSpeed, 2));
+  EXPECT_EQ(sc.bar_label, "v / v_rms");
+  EXPECT_NE(sc.bar_note.find("v_rms = "), std::string::npos);
+  // Doubling every speed changes v_rms, not one colour: that is what a fixed scaled range buys.
+  Snapshot fast = s;
+  for (auto& v : fast.velocity) v *= 2;
+  const Scene sf = build_scene({&fast}, st, view(), painter());
+  ASSERT_EQ(sf.shade.size(), sc.shade.size());
+  for (std::size_t i = 0; i < sc.shade.size(); ++i) EXPECT_FLOAT_EQ(sf.shade[i], sc.shade[i]);
+  // The innermost disc (speed 2) sits at 2 / rms on the fixed range.
+  const auto [lo, hi] = sc.range;
+  const double want = std::clamp((2 / rms - lo) / (hi - lo), 0.0, 1.0);
+  EXPECT_NEAR(sc.shade.front(), want, 1e-6);
+  // Plain speed with --range-per-frame: the percentiles of this frame.
+  st.field = Field::Speed;
+  st.range_per_frame = true;
+  const Scene sp = build_scene({&s}, st, view(), painter());
+  EXPECT_NEAR(sp.range.first, 1.0, 0.05);
+  EXPECT_NEAR(sp.range.second, 2.0, 0.05);
+  EXPECT_TRUE(sp.bar_note.empty());
+}
+
+TEST(Scene, ScaledRadialVelocityIsRelativeToTheDrift) {
+  Snapshot s = ring(1, 1);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.active[i]) s.velocity[i] += Eigen::Vector3d(0.5, 0, 0);  // a common drift
+  const auto v = field_values(s, Field::ScaledRadialVelocity);
+  double v_rms = 0;
+  field_values(s, Field::ScaledSpeed, &v_rms);
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) EXPECT_NEAR(v[i], 1 / v_rms, 1e-9);
+}
+
+TEST(Scene, InsetProfileHoldsTheBandAndItsScaledSpeeds) {
+  const Snapshot s = ring(2, 1);
+  Style st;
+  st.field = Field::ScaledSpeed;
+  st.inset = true;
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  ASSERT_TRUE(sc.inset);
+  const InsetData& d = *sc.inset;
+  ASSERT_FALSE(d.r.empty());
+  EXPECT_TRUE(d.scaled);
+  // Shells inside the ring are empty; in it the scaled speed falls outward from 2 / rms.
+  const double rms = rms_of_active(s);
+  double first = NAN, last = NAN;
+  for (std::size_t b = 0; b < d.r.size(); ++b) {
+    if (d.r[b] < 19) {
+      EXPECT_EQ(d.density[b], 0) << d.r[b];
+    }
+    if (std::isfinite(d.speed[b])) {
+      if (std::isnan(first)) first = d.speed[b];
+      last = d.speed[b];
+    }
+  }
+  EXPECT_NEAR(first, 2 / rms, 0.1 / rms);
+  EXPECT_NEAR(last, 1 / rms, 0.1 / rms);
+}
+
+TEST(Scene, MissingDataAndUnknownFieldsNameTheFile) {
+  Snapshot s = ring(2, 1);
+  s.velocity.clear();
+  Style st;
+  st.field = Field::ScaledSpeed;
+  EXPECT_THROW(build_scene({&s}, st, view(), painter()), UserError);
+  try {
+    choose_field("speed", s, "a.xyz");
+    ADD_FAILURE() << "no velocities";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("a.xyz"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no velocities"), std::string::npos) << e.what();
+  }
+  try {
+    choose_field("temperature", ring(2, 1), "b.xyz");
+    ADD_FAILURE() << "unknown field";
+  } catch (const UserError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("temperature"), std::string::npos) << m;
+    EXPECT_NE(m.find("scaled-speed, speed"), std::string::npos) << m;
+    EXPECT_EQ(m.find("first-collision"), std::string::npos) << "the ring has no such column";
+  }
+}
+
+// Points of a ring at pixel radii 40..80 whose colour position falls linearly outward from 1 to
+// 0: the inner quarter's mean is 0.875 and the outer quarter's 0.125, so the measure is 0.75.
+TEST(EdgeContrast, ReadsTheInnerEdgeOfARing) {
+  std::vector<ShadedPoint> pts;
+  for (int i = 0; i <= 400; ++i)
+    for (int k = 0; k < 360; ++k) {
+      const double r = 40 + 40 * i / 400.0, a = 2 * std::numbers::pi * (k + 0.5) / 360;
+      pts.push_back({200 + r * std::cos(a), 150 + r * std::sin(a), 1 - i / 400.0});
+    }
+  EXPECT_NEAR(edge_contrast(pts), 0.75, 0.01);
+  for (auto& p : pts) p.t = 1 - p.t;
+  EXPECT_NEAR(edge_contrast(pts), -0.75, 0.01);
+  for (auto& p : pts) p.t = 0.5;
+  EXPECT_NEAR(edge_contrast(pts), 0, 1e-12);
+  EXPECT_TRUE(std::isnan(edge_contrast({})));
+}
+
+TEST(EdgeContrast, PixelsMapBackToTheirColormapPosition) {
+  const Colormap cm = Colormap::by_name("viridis");
+  Image img(64, 8);
+  for (int x = 0; x < 64; ++x)
+    for (int y = 0; y < 8; ++y) {
+      const Rgb8 c = x < 56 ? cm.at8(x / 55.0) : Rgb8{255, 255, 255};
+      std::copy(c.begin(), c.end(), img.pixel(x, y));
+    }
+  const auto all = shaded_pixels(img, cm, {});
+  EXPECT_EQ(all.size(), 56u * 8) << "the white pixels are background";
+  for (const auto& p : all) EXPECT_NEAR(p.t, (p.x - 0.5) / 55.0, 1.0 / 255 + 1e-9);
+  const auto some = shaded_pixels(img, cm, {Rect{0, 0, 32, 8}});
+  EXPECT_EQ(some.size(), 24u * 8) << "excluded rectangles are left out";
+}
+
+}  // namespace
+}  // namespace gs::render
