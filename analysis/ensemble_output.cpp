@@ -1,6 +1,10 @@
 #include "analysis/ensemble_output.h"
 
+#include <toml++/toml.h>
+
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "analysis/json.h"
@@ -96,6 +100,59 @@ std::string crossover_json(const Crossover& c) {
 
 }  // namespace
 
+void check_fit_options(const EnsembleSpec& spec, const FitOptions& fit) {
+  // Fewer resamples than 10 give no 95% interval at all; the cap keeps a typo from running for
+  // days.
+  if (fit.resamples < 10 || fit.resamples > 1000000)
+    throw UserError("--resamples must be in [10, 1000000], not " + std::to_string(fit.resamples));
+  if (fit.window) check_window(spec, *fit.window);
+}
+
+std::string job_toml(const EnsembleJob& job) {
+  std::string s = spec_toml(job.spec);
+  s += "resamples = " + std::to_string(job.fit.resamples) + "\n";
+  if (job.fit.window)
+    s += "window = [" + format_double(job.fit.window->t_lo) + ", " +
+         format_double(job.fit.window->t_hi) + "]\n";
+  if (job.keep_realisations) s += "per-realisation = true\n";
+  return s;
+}
+
+EnsembleJob read_job(const std::filesystem::path& file) {
+  EnsembleJob job;
+  job.spec = read_spec(file);
+  const std::string where = file.string();
+  toml::table t;
+  try {
+    t = toml::parse_file(where);
+  } catch (const toml::parse_error& e) {
+    throw UserError(where + ": malformed TOML at line " + std::to_string(e.source().begin.line));
+  }
+  if (const auto* n = t.get("resamples")) {
+    const auto v = n->value<std::int64_t>();
+    if (!v || *v < 0 || *v > std::numeric_limits<int>::max())
+      throw UserError(where + ": key 'resamples' is not a count");
+    job.fit.resamples = static_cast<int>(*v);
+  }
+  if (const auto* n = t.get("window")) {
+    const auto* a = n->as_array();
+    if (a == nullptr || a->size() != 2 || !(*a)[0].value<double>() || !(*a)[1].value<double>())
+      throw UserError(where + ": key 'window' is not two times [T1, T2]");
+    job.fit.window = Window{*(*a)[0].value<double>(), *(*a)[1].value<double>()};
+  }
+  if (const auto* n = t.get("per-realisation")) {
+    const auto v = n->value<bool>();
+    if (!v) throw UserError(where + ": key 'per-realisation' is not true or false");
+    job.keep_realisations = *v;
+  }
+  try {
+    check_fit_options(job.spec, job.fit);
+  } catch (const UserError& e) {
+    throw UserError(where + ": " + e.what());
+  }
+  return job;
+}
+
 EnsembleSpec held_spec(const EnsembleSums& sums) {
   EnsembleSpec s = sums.spec();
   if (!sums.indices().empty()) s.physics.realisation = sums.indices().front();
@@ -177,10 +234,28 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   return j.str();
 }
 
+std::string exponent_table(const EnsembleSums& sums, const EnsembleFits& fits) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "# %llu realisations; <y> ~ t^exponent, 95%% bootstrap interval [ci_lo, ci_hi]; "
+                "theory alpha = %.4f\n",
+                static_cast<unsigned long long>(sums.count()), fits.alpha_theory);
+  std::string s = line;
+  std::snprintf(line, sizeof line, "%-8s %9s %9s %9s %9s %9s %9s  note\n", "quantity", "exponent",
+                "ci_lo", "ci_hi", "theory", "alpha", "alpha_err");
+  s += line;
+  for (const auto& e : fits.exponents) {
+    std::snprintf(line, sizeof line, "%-8s %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f", e.quantity.c_str(),
+                  e.fit.exponent, e.fit.ci_lo, e.fit.ci_hi, e.theory, e.alpha, e.alpha_uncertainty);
+    s += line;
+    s += (e.note.empty() ? "" : "  " + e.note) + "\n";
+  }
+  return s;
+}
+
 void write_ensemble_outputs(const std::filesystem::path& dir, const EnsembleSums& sums,
                             const EnsembleFits& fits) {
   GS_CHECK(sums.count() >= 1);
-  write_file_atomic(dir / "ensemble.toml", spec_toml(held_spec(sums)));
   write_csv(sums.timeseries(), dir / "timeseries_mean.csv");
   write_csv(distributions(sums), dir / "distributions_mean.csv");
   write_csv(snapshot_scalars(sums), dir / "snapshot_scalars_mean.csv");

@@ -1,7 +1,10 @@
 #pragma once
 // The files of an ensemble folder, written from the sums alone so that the one-shot ensemble and
 // `grainshock merge` of its split parts write the same bytes:
-//   ensemble.toml               the spec (physics, grid, snapshot times, bins), --config-readable
+//   ensemble.toml               the job (physics, grid, snapshot times, bins, fit),
+//   --config-readable realisations/NNNNNN/        each realisation's contribution
+//   (analysis/realisation.h), written
+//                               as it finishes; kept with --per-realisation (input of merge)
 //   timeseries_mean.csv         t, t_paper, then mean c and standard error c_sem of every column
 //   distributions_mean.csv      per snapshot time and bin: P(R,t), P(v,t), their scaled forms
 //                               (x_R = R t^-alpha, f1 = t^alpha P; x_v = v t^(1-alpha),
@@ -17,12 +20,33 @@
 
 namespace gs {
 
+// What an ensemble folder was asked to hold: ensemble.toml. Written before the first realisation
+// runs, so that a killed ensemble can be resumed from its folder alone.
+struct EnsembleJob {
+  EnsembleSpec spec;
+  FitOptions fit;
+  bool keep_realisations = false;  // --per-realisation: keep realisations/ once finished
+};
+
+// UserError naming --resamples or --window if the fit cannot be made on this spec's data.
+void check_fit_options(const EnsembleSpec& spec, const FitOptions& fit);
+
+// spec_toml() plus resamples, window and per-realisation: every key a flag of `ensemble`, so the
+// file is its --config.
+std::string job_toml(const EnsembleJob& job);
+// UserError naming the file.
+EnsembleJob read_job(const std::filesystem::path& file);
+
 // The spec as held: first realisation = lowest index held, realisations = count.
 EnsembleSpec held_spec(const EnsembleSums& sums);
 
 std::string summary_json(const EnsembleSums& sums, const EnsembleFits& fits);
 
-// Needs sums.count() >= 1.
+// The exponents as a table of text, one row per quantity (what `ensemble` and `merge` print on
+// stdout): quantity, exponent, 95% interval, theory, implied alpha and its uncertainty, note.
+std::string exponent_table(const EnsembleSums& sums, const EnsembleFits& fits);
+
+// The result files (not ensemble.toml). Needs sums.count() >= 1.
 void write_ensemble_outputs(const std::filesystem::path& dir, const EnsembleSums& sums,
                             const EnsembleFits& fits);
 

@@ -1,36 +1,56 @@
 #pragma once
-// Runs the realisations of an ensemble on worker threads. Each worker pulls the next index from
-// an atomic counter, runs one engine at a time and adds the result into its own exact sums;
-// the workers' sums are merged at the end. Exact sums make the result independent of which
-// worker ran what (DESIGN.md: results do not depend on the split). Memory: one engine and one
-// realisation's measures per thread.
+// Runs the realisations of an ensemble over ranks (analysis/ensemble_ranks.h: MPI processes, or
+// this process alone) and worker threads. Rank 0 hands each rank a share of the indices; within a
+// rank, workers pull the next index from a shared counter and run one engine at a time. Each
+// finished realisation travels as the text of its folder (analysis/realisation.h) to the main
+// thread of rank 0, which writes it (whole or not at all) and adds it into exact sums. Exact
+// sums make the result independent of which rank or thread ran what, and reading a finished
+// realisation back from its folder gives the same numbers as running it (DESIGN.md: results do
+// not depend on the split), so an ensemble killed at any moment resumes to the same bytes.
+// Memory: one engine and one realisation's measures per thread.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <vector>
 
+#include "analysis/ensemble_ranks.h"
 #include "analysis/ensemble_sums.h"
 #include "analysis/realisation.h"
 
 namespace gs {
 
 struct RunnerOptions {
-  int threads = 1;
-  // If not empty, each realisation is also written to per_realisation_dir / "NNNNNN" (for merge).
-  std::filesystem::path per_realisation_dir;
-  SnapshotHook on_snapshot;  // called from worker threads; must be thread-safe
-  // Called (serialised) after each finished realisation with (finished, total).
+  int threads = 1;  // per rank
+  // If not empty: each realisation is written to realisations_dir / realisation_folder(k) as it
+  // finishes, and realisations found there already are read instead of run (resume).
+  std::filesystem::path realisations_dir;
+  SnapshotHook on_snapshot;  // called from worker threads of rank 0 only; must be thread-safe
+  // Called on rank 0's main thread after each realisation finished in this call, with
+  // (finished, to run in this call).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
+  Ranks* ranks = nullptr;  // nullptr: this process alone
 };
 
 struct RunnerResult {
   EnsembleSums sums;
-  bool interrupted = false;  // a stop was requested; sums hold the realisations that finished
+  bool interrupted = false;   // a stop was requested; sums hold the realisations that finished
+  std::uint64_t resumed = 0;  // realisations read from realisations_dir instead of run
 };
 
-// Folder name of realisation k under per_realisation_dir.
+// Folder name of realisation k under realisations_dir.
 std::string realisation_folder(std::uint64_t index);
 
-// UserError if threads < 1 (or for an impossible spec, from the engine).
+// The spec's realisations that realisations_dir holds finished.
+std::vector<std::uint64_t> finished_realisations(const std::filesystem::path& realisations_dir,
+                                                 const EnsembleSpec& spec);
+
+// On rank 0. UserError if threads < 1, for a realisation folder that cannot be read, or when a
+// realisation fails, naming the rank (with more than one) and the realisation; the realisations
+// finished by then are written already. Ends the job for the other ranks (Ranks::finish).
 RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& options);
+
+// On every other rank: runs the share rank 0 hands out and sends the results; returns the exit
+// code rank 0 gives at the end. Writes and prints nothing.
+int serve_ensemble(Ranks& ranks);
 
 }  // namespace gs

@@ -1,8 +1,11 @@
 #include "analysis/realisation.h"
 
 #include <toml++/toml.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -89,6 +92,14 @@ const std::vector<std::string> kScalarColumns = {"t",
                                                  "packing_local_median",
                                                  "packing_local_upper"};
 
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw UserError("cannot read " + file.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
 
 double theory_alpha(const PhysicsConfig& c) {
@@ -139,35 +150,32 @@ std::string spec_toml(const EnsembleSpec& spec) {
   return o.str();
 }
 
-EnsembleSpec read_spec(const std::filesystem::path& file) {
+EnsembleSpec parse_spec(std::string_view text, const std::string& source) {
   toml::table t;
   try {
-    t = toml::parse_file(file.string());
+    t = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw UserError(file.string() + ": malformed TOML at line " +
-                    std::to_string(e.source().begin.line));
-  } catch (const std::exception& e) {
-    throw UserError(file.string() + ": cannot read");
+    throw UserError(source + ": malformed TOML at line " + std::to_string(e.source().begin.line));
   }
   auto need = [&](const char* key) -> const toml::node& {
     const toml::node* n = t.get(key);
-    if (n == nullptr) throw UserError(file.string() + ": key '" + key + "' missing");
+    if (n == nullptr) throw UserError(source + ": key '" + key + "' missing");
     return *n;
   };
   auto num = [&](const char* key) {
     const auto& n = need(key);
     if (auto v = n.value<double>()) return *v;
-    throw UserError(file.string() + ": key '" + key + "' is not a number");
+    throw UserError(source + ": key '" + key + "' is not a number");
   };
   auto integer = [&](const char* key) {
     const auto& n = need(key);
     if (auto v = n.value<std::int64_t>()) return *v;
-    throw UserError(file.string() + ": key '" + key + "' is not an integer");
+    throw UserError(source + ": key '" + key + "' is not an integer");
   };
   auto str = [&](const char* key) {
     const auto& n = need(key);
     if (auto v = n.value<std::string>()) return *v;
-    throw UserError(file.string() + ": key '" + key + "' is not a string");
+    throw UserError(source + ": key '" + key + "' is not a string");
   };
   EnsembleSpec s;
   PhysicsConfig& p = s.physics;
@@ -181,32 +189,35 @@ EnsembleSpec read_spec(const std::filesystem::path& file) {
   p.realisation = static_cast<std::uint64_t>(integer("realisation"));
   p.t_max = num("t-max");
   const std::string initial = str("initial"), site = str("kick-site");
-  if (initial != to_string(Initial::Kick))
-    throw UserError(file.string() + ": initial must be kick");
+  if (initial != to_string(Initial::Kick)) throw UserError(source + ": initial must be kick");
   p.initial = Initial::Kick;
   if (site == to_string(KickSite::Centre))
     p.kick_site = KickSite::Centre;
   else if (site == to_string(KickSite::Random))
     p.kick_site = KickSite::Random;
   else
-    throw UserError(file.string() + ": unknown kick-site '" + site + "'");
+    throw UserError(source + ": unknown kick-site '" + site + "'");
   p.temperature = num("temperature");
   p.lattice = num("lattice");
   s.realisations = static_cast<std::uint64_t>(integer("realisations"));
   s.per_decade = static_cast<int>(integer("per-decade"));
   s.bins = static_cast<int>(integer("bins"));
   const auto* arr = need("snapshot-times").as_array();
-  if (arr == nullptr) throw UserError(file.string() + ": key 'snapshot-times' is not an array");
+  if (arr == nullptr) throw UserError(source + ": key 'snapshot-times' is not an array");
   for (auto&& el : *arr) {
     auto v = el.value<double>();
-    if (!v) throw UserError(file.string() + ": snapshot-times holds a non-number");
+    if (!v) throw UserError(source + ": snapshot-times holds a non-number");
     s.snapshot_times.push_back(*v);
   }
   try {
     return checked(s);
   } catch (const UserError& e) {
-    throw UserError(file.string() + ": " + e.what());
+    throw UserError(source + ": " + e.what());
   }
+}
+
+EnsembleSpec read_spec(const std::filesystem::path& file) {
+  return parse_spec(read_text(file), file.string());
 }
 
 Binning radius_binning(const EnsembleSpec& spec, double t) {
@@ -287,9 +298,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
   return true;
 }
 
-void write_realisation(const std::filesystem::path& dir, const Realisation& r) {
-  std::filesystem::create_directories(dir);
-  write_csv(r.timeseries, dir / "timeseries.csv");
+std::vector<RealisationFile> realisation_files(const Realisation& r) {
   Table dist, scalars;
   std::size_t rows = 0;
   for (const auto& m : r.snapshots) rows += m.radius.bins();
@@ -334,16 +343,23 @@ void write_realisation(const std::filesystem::path& dir, const Realisation& r) {
                                      m.measures.local_upper};
     scalars.add_row(row);
   }
-  write_csv(dist, dir / "distributions.csv");
-  write_csv(scalars, dir / "snapshot_scalars.csv");
+  return {{kRealisationFiles[0], to_csv(r.timeseries)},
+          {kRealisationFiles[1], to_csv(dist)},
+          {kRealisationFiles[2], to_csv(scalars)}};
 }
 
-Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index) {
+Realisation parse_realisation(const std::vector<RealisationFile>& files, std::uint64_t index,
+                              const std::filesystem::path& dir) {
+  auto table = [&](const char* name) {
+    for (const auto& f : files)
+      if (f.name == name) return parse_csv(f.text, (dir / name).string());
+    throw UserError((dir / name).string() + ": missing");
+  };
   Realisation r;
   r.index = index;
-  r.timeseries = read_csv(dir / "timeseries.csv");
-  const Table dist = read_csv(dir / "distributions.csv");
-  const Table sc = read_csv(dir / "snapshot_scalars.csv");
+  r.timeseries = table(kRealisationFiles[0]);
+  const Table dist = table(kRealisationFiles[1]);
+  const Table sc = table(kRealisationFiles[2]);
   for (const auto& n : kDistributionColumns) (void)dist.column(n);  // UserError if missing
   for (const auto& n : kScalarColumns) (void)sc.column(n);
   const auto& t = dist.column("t");
@@ -396,6 +412,45 @@ Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t ind
     throw UserError((dir / "distributions.csv").string() +
                     ": rows do not match snapshot_scalars.csv");
   return r;
+}
+
+void write_realisation(const std::filesystem::path& dir,
+                       const std::vector<RealisationFile>& files) {
+  namespace fs = std::filesystem;
+  const fs::path tmp = temporary_realisation(dir);
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp, ec);
+  if (ec) throw UserError("cannot create '" + tmp.string() + "': " + ec.message());
+  for (const auto& f : files) {
+    std::ofstream out(tmp / f.name, std::ios::binary | std::ios::trunc);
+    out.write(f.text.data(), static_cast<std::streamsize>(f.text.size()));
+    out.close();
+    if (!out) {
+      fs::remove_all(tmp, ec);
+      throw UserError("cannot write '" + (dir / f.name).string() + "'");
+    }
+  }
+  fs::rename(tmp, dir, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove_all(tmp, ec);
+    throw UserError("cannot write '" + dir.string() + "': " + why);
+  }
+}
+
+std::filesystem::path temporary_realisation(const std::filesystem::path& dir) {
+  std::string name = ".";  // appended, not "." + ...: GCC 12 warns falsely about the latter
+  name += dir.filename().string();
+  name += ".tmp.";
+  name += std::to_string(::getpid());
+  return dir.parent_path() / name;
+}
+
+Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index) {
+  std::vector<RealisationFile> files;
+  for (const char* name : kRealisationFiles) files.push_back({name, read_text(dir / name)});
+  return parse_realisation(files, index, dir);
 }
 
 }  // namespace gs

@@ -6,10 +6,12 @@
 //
 // A realisation can be written to a folder and read back exactly (shortest round-trip numbers),
 // which is what lets `grainshock merge` reproduce the one-shot ensemble to the last bit.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/band_measures.h"
@@ -41,8 +43,9 @@ std::string spec_toml(const EnsembleSpec& spec);
 // The same text without the keys that say which realisations are held, for comparing the
 // physics of folders to merge.
 std::string spec_identity(const EnsembleSpec& spec);
-// Parses ensemble.toml (UserError naming the file).
+// Parses ensemble.toml (UserError naming the file, or `source` for text).
 EnsembleSpec read_spec(const std::filesystem::path& file);
+EnsembleSpec parse_spec(std::string_view text, const std::string& source);
 
 // Fixed binnings of the snapshot observables at time t: [0, 5 t^alpha] for distances and
 // [0, 5 t^(alpha-1)] for speeds, the theory's scales with room for the tails (R_rms ~ 2 t^alpha
@@ -89,7 +92,22 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
 
 // Folder layout: timeseries.csv, distributions.csv (one row per snapshot time and bin),
 // snapshot_scalars.csv (one row per snapshot time).
-void write_realisation(const std::filesystem::path& dir, const Realisation& r);
+inline constexpr std::array<const char*, 3> kRealisationFiles = {
+    "timeseries.csv", "distributions.csv", "snapshot_scalars.csv"};
+struct RealisationFile {
+  std::string name, text;
+};
+// The folder's files as text (what an ensemble sends between processes), and back; `dir` names
+// the folder in error messages.
+std::vector<RealisationFile> realisation_files(const Realisation& r);
+Realisation parse_realisation(const std::vector<RealisationFile>& files, std::uint64_t index,
+                              const std::filesystem::path& dir);
+// Writes the folder whole or not at all: into temporary_realisation(dir), renamed when complete,
+// so a killed ensemble leaves finished realisations and temporaries, never half a realisation.
+void write_realisation(const std::filesystem::path& dir, const std::vector<RealisationFile>& files);
+// ".NAME.tmp.PID" beside the folder NAME; leftovers of killed writers start with "." and hold
+// ".tmp.".
+std::filesystem::path temporary_realisation(const std::filesystem::path& dir);
 Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index);
 
 }  // namespace gs

@@ -1,8 +1,13 @@
-// `grainshock ensemble`: M realisations on K threads, averaged with errors and fitted.
+// `grainshock ensemble`: M realisations over ranks (mpirun) and threads, averaged with errors and
+// fitted. Each realisation is written into OUT/realisations/ as it finishes, so the same command
+// again (or `grainshock resume OUT`) after a kill runs only the missing ones, to the same bytes.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
-#include <mutex>
 #include <thread>
 
 #include "analysis/ensemble_runner.h"
@@ -16,6 +21,8 @@
 namespace gs::app {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct EnsembleOptions {
   PhysicsConfig physics;
   long long realisations = 8;
@@ -26,63 +33,150 @@ struct EnsembleOptions {
   std::vector<double> snapshot_times, window;
 };
 
+// Held while the ensemble runs: a second process on the same folder (a requeued job, a repeated
+// command) is refused instead of running the same realisations. The kernel drops the lock when
+// the process dies, even by kill -9.
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY)) {
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      throw UserError(dir.string() + ": another grainshock is running this ensemble");
+  }
+  ~FolderLock() { ::close(fd_); }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+// Runs what the folder's job still lacks (all of it for a new folder) and writes the results.
+int run_job(const fs::path& dir, const EnsembleJob& job, int threads, bool quiet, Ranks& ranks) {
+  const fs::path rdir = dir / "realisations";
+  const auto held = finished_realisations(rdir, job.spec).size();
+  const std::uint64_t to_run = job.spec.realisations - held;
+  if (!quiet && held > 0)
+    std::fprintf(stderr, "grainshock: resuming %s: %zu of %llu realisations finished before\n",
+                 dir.c_str(), held, static_cast<unsigned long long>(job.spec.realisations));
+  if (!quiet && std::uint64_t(ranks.size()) > to_run)
+    std::fprintf(stderr, "grainshock: %d ranks for %llu realisations to run: ranks %llu-%d idle\n",
+                 ranks.size(), static_cast<unsigned long long>(to_run),
+                 static_cast<unsigned long long>(to_run), ranks.size() - 1);
+
+  install_stop_handlers();
+  Progress progress(quiet);
+  RunnerOptions ro;
+  ro.threads = threads;
+  ro.realisations_dir = rdir;
+  ro.ranks = &ranks;
+  ro.on_progress = [&](std::uint64_t done, std::uint64_t total) {
+    progress.update(double(done) / double(total), std::to_string(held + done) + " of " +
+                                                      std::to_string(job.spec.realisations) +
+                                                      " realisations");
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  RunnerResult r = run_ensemble(job.spec, ro);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  progress.done();
+  if (r.sums.count() == 0)
+    throw UserError("interrupted before any realisation finished (resume with: grainshock resume " +
+                    dir.string() + ")");
+  const RunTiming timing{wall, threads, ranks.size(), r.sums.count() - r.resumed};
+  const EnsembleFits fits = write_ensemble_folder(dir, r.sums, job, timing);
+  if (!r.interrupted && !job.keep_realisations) {
+    // Renamed first, so that a kill while deleting cannot leave a folder that looks unfinished.
+    const fs::path gone = dir / (".realisations.tmp." + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::rename(rdir, gone, ec);
+    if (!ec) fs::remove_all(gone, ec);
+  }
+  std::fputs(exponent_table(r.sums, fits).c_str(), stdout);
+  std::fflush(stdout);
+  if (!quiet)
+    std::fprintf(stderr,
+                 "grainshock: %s %llu of %llu realisations (%llu run now, in %.3g s on %s%d "
+                 "threads); results in %s\n",
+                 r.interrupted ? "interrupted with" : "finished",
+                 static_cast<unsigned long long>(r.sums.count()),
+                 static_cast<unsigned long long>(job.spec.realisations),
+                 static_cast<unsigned long long>(timing.realisations), wall,
+                 ranks.size() > 1 ? (std::to_string(ranks.size()) + " ranks x ").c_str() : "",
+                 threads, dir.c_str());
+  return r.interrupted ? 128 + std::max(0, stop_signal()) : 0;
+}
+
 int run(const EnsembleOptions& o) {
+  Ranks& ranks = Ranks::world();
+  if (ranks.rank() != 0) return serve_ensemble(ranks);
   // Every check before the output folder is touched: bad input leaves nothing behind.
   if (o.realisations < 1) throw UserError("--realisations must be at least 1");
   if (o.threads < 1) throw UserError("--threads must be at least 1");
-  if (o.resamples < 10) throw UserError("--resamples must be at least 10");
-  EnsembleSpec spec;
-  spec.physics = o.physics;
-  spec.realisations = static_cast<std::uint64_t>(o.realisations);
-  spec.per_decade = o.per_decade;
-  spec.bins = o.bins;
-  spec.snapshot_times = o.snapshot_times;
-  spec = checked(spec);
-  FitOptions fit;
-  fit.window = window_of(o.window, spec);
-  fit.resamples = o.resamples;
-  const auto dir = prepare_output_dir(o.out, o.force);
+  EnsembleJob job;
+  job.spec.physics = o.physics;
+  job.spec.realisations = static_cast<std::uint64_t>(o.realisations);
+  job.spec.per_decade = o.per_decade;
+  job.spec.bins = o.bins;
+  job.spec.snapshot_times = o.snapshot_times;
+  job.spec = checked(job.spec);
+  job.fit = fit_options(o.resamples, o.window, job.spec);
+  job.keep_realisations = o.per_realisation;
 
-  install_stop_handlers();
-  Progress progress(o.quiet);
-  RunnerOptions ro;
-  ro.threads = o.threads;
-  if (o.per_realisation) ro.per_realisation_dir = dir / "realisations";
-  ro.on_progress = [&](std::uint64_t done, std::uint64_t total) {
-    progress.update(double(done) / double(total),
-                    std::to_string(done) + " of " + std::to_string(total) + " realisations");
-  };
-  const auto t0 = std::chrono::steady_clock::now();
-  RunnerResult r = run_ensemble(spec, ro);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  progress.done();
-  if (r.sums.count() == 0) throw UserError("interrupted before any realisation finished");
-  const EnsembleFits fits = write_ensemble_folder(dir, r.sums, fit, wall, o.threads);
-  if (!o.quiet) {
-    std::fprintf(stderr,
-                 "grainshock: %s %llu realisations in %.3g s on %d threads; results in %s\n",
-                 r.interrupted ? "interrupted after" : "finished",
-                 static_cast<unsigned long long>(r.sums.count()), wall, o.threads, dir.c_str());
-    for (const auto& e : fits.exponents)
-      std::fprintf(stderr, "  %s ~ t^%.4f [%.4f, %.4f]  theory %.4f  (alpha %.4f +- %.4f)%s%s\n",
-                   e.quantity.c_str(), e.fit.exponent, e.fit.ci_lo, e.fit.ci_hi, e.theory, e.alpha,
-                   e.alpha_uncertainty, e.note.empty() ? "" : "  ", e.note.c_str());
+  const fs::path dir(o.out);
+  const bool resume = !o.force && holds_unfinished_ensemble(dir);
+  if (resume && job_toml(read_job(dir / "ensemble.toml")) != job_toml(job))
+    throw UserError("--out " + o.out +
+                    ": holds an unfinished ensemble of other settings (its ensemble.toml); "
+                    "resume it with: grainshock resume " +
+                    o.out + ", or use --force to start again");
+  if (!resume) prepare_output_dir(o.out, o.force);
+  const FolderLock lock(dir);
+  if (!resume) {
+    std::error_code ec;
+    fs::remove_all(dir / "realisations", ec);  // --force starts again
+    write_file_atomic(dir / "ensemble.toml", job_toml(job));
   }
-  return r.interrupted ? 128 + std::max(0, stop_signal()) : 0;
+  return run_job(dir, job, o.threads, o.quiet, ranks);
 }
 
 }  // namespace
 
+bool holds_unfinished_ensemble(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "ensemble.toml", ec) ||
+      !fs::is_directory(dir / "realisations", ec))
+    return false;
+  const EnsembleSpec spec = read_job(dir / "ensemble.toml").spec;
+  return !fs::exists(dir / "summary.json", ec) ||
+         finished_realisations(dir / "realisations", spec).size() < spec.realisations;
+}
+
+int resume_ensemble(const fs::path& dir, int threads, bool quiet) {
+  Ranks& ranks = Ranks::world();
+  if (ranks.rank() != 0) return serve_ensemble(ranks);
+  if (threads < 1) throw UserError("--threads must be at least 1");
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "ensemble.toml", ec))
+    throw UserError(dir.string() + ": not an ensemble folder (no ensemble.toml)");
+  if (!holds_unfinished_ensemble(dir))
+    throw UserError(dir.string() + ": the ensemble is finished (nothing to resume)");
+  const EnsembleJob job = read_job(dir / "ensemble.toml");
+  const FolderLock lock(dir);
+  return run_job(dir, job, threads, quiet, ranks);
+}
+
 void add_ensemble_command(CLI::App& app) {
   auto opt = std::make_shared<EnsembleOptions>();
   auto* sub = app.add_subcommand(
-      "ensemble", "Run M realisations on K threads; average, fit exponents, write a folder");
+      "ensemble",
+      "Run M realisations over threads (and MPI ranks under mpirun); average, fit exponents, "
+      "write a folder and print the exponents on stdout");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
   sub->add_option("--realisations", opt->realisations,
                   "Number of realisations M (indices --realisation .. + M - 1)")
       ->capture_default_str();
-  sub->add_option("--threads", opt->threads, "Worker threads K (results do not depend on it)")
+  sub->add_option("--threads", opt->threads,
+                  "Worker threads K per process (results do not depend on it)")
       ->capture_default_str();
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_option("--per-decade", opt->per_decade, "Samples per decade of the logarithmic grid")
@@ -93,11 +187,10 @@ void add_ensemble_command(CLI::App& app) {
       ->delimiter(',');
   sub->add_option("--bins", opt->bins, "Bins of the distributions and profiles")
       ->capture_default_str();
-  sub->add_option("--resamples", opt->resamples, "Bootstrap resamples of the exponent intervals")
-      ->capture_default_str();
-  add_window_option(*sub, opt->window);
+  add_fit_options(*sub, opt->resamples, opt->window);
   sub->add_flag("--per-realisation", opt->per_realisation,
-                "Also write each realisation into OUT/realisations/ (input of grainshock merge)");
+                "Keep OUT/realisations/ once finished (input of grainshock merge); it is always "
+                "written while the ensemble runs, so that a killed one resumes");
   sub->callback([opt] {
     const int rc = run(*opt);
     if (rc != 0) std::exit(rc);

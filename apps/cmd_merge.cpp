@@ -1,6 +1,7 @@
-// `grainshock merge DIR... --out OUT`: combines ensemble folders written with --per-realisation
-// (e.g. split over cluster jobs with --realisation F --realisations M) into the folder the
-// one-shot ensemble would have written, byte for byte (exact sums, analysis/ensemble.h).
+// `grainshock merge DIR... --out OUT`: combines ensemble folders holding realisations/ (written
+// with --per-realisation, e.g. split over cluster jobs with --realisation F --realisations M, or
+// left by a killed ensemble) into the folder the one-shot ensemble would have written, byte for
+// byte (exact sums, analysis/ensemble.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -17,6 +18,8 @@
 namespace gs::app {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct MergeOptions {
   std::vector<std::string> inputs;
   std::string out;
@@ -25,8 +28,17 @@ struct MergeOptions {
   std::vector<double> window;
 };
 
+// Whether `inner` is `outer` or lies inside it, after resolving links and dots.
+bool within(const fs::path& inner, const fs::path& outer) {
+  std::error_code ec;
+  const fs::path a = fs::weakly_canonical(inner, ec), b = fs::weakly_canonical(outer, ec);
+  auto ia = a.begin(), ib = b.begin();
+  for (; ib != b.end() && !ib->empty(); ++ia, ++ib)
+    if (ia == a.end() || *ia != *ib) return false;
+  return true;
+}
+
 void run(const MergeOptions& o) {
-  namespace fs = std::filesystem;
   const auto t0 = std::chrono::steady_clock::now();
   if (o.inputs.empty()) throw UserError("merge: give at least one ensemble folder");
   // Read and check everything before the output folder is touched.
@@ -35,6 +47,9 @@ void run(const MergeOptions& o) {
   std::vector<std::pair<std::uint64_t, fs::path>> parts;
   for (const auto& in : o.inputs) {
     const fs::path dir(in);
+    if (within(o.out, dir))
+      throw UserError("--out " + o.out + ": is the input " + in +
+                      " or inside it (merging into an input would overwrite it)");
     if (!fs::is_regular_file(dir / "ensemble.toml"))
       throw UserError(in + ": not an ensemble folder (no ensemble.toml)");
     const EnsembleSpec s = read_spec(dir / "ensemble.toml");
@@ -48,28 +63,30 @@ void run(const MergeOptions& o) {
     const fs::path rdir = dir / "realisations";
     if (!fs::is_directory(rdir))
       throw UserError(in + ": no realisations/ folder (run ensemble with --per-realisation)");
-    for (std::uint64_t k = 0; k < s.realisations; ++k) {
-      const std::uint64_t index = s.physics.realisation + k;
-      const fs::path p = rdir / realisation_folder(index);
-      if (!fs::is_directory(p))
-        throw UserError(p.string() + ": missing (the folder says it holds " +
-                        std::to_string(s.realisations) + " realisations)");
-      parts.emplace_back(index, p);
-    }
+    const auto found = finished_realisations(rdir, s);
+    // A folder whose ensemble did not finish (killed, or still running) gives what it holds.
+    if (found.empty())
+      throw UserError(in + ": no finished realisation yet (resume it with: grainshock resume " +
+                      in + ")");
+    if (found.size() < s.realisations && !o.quiet)
+      std::fprintf(stderr,
+                   "grainshock: %s: %zu of %llu realisations finished (an unfinished ensemble; "
+                   "merging those)\n",
+                   in.c_str(), found.size(), static_cast<unsigned long long>(s.realisations));
+    for (auto index : found) parts.emplace_back(index, rdir / realisation_folder(index));
   }
   std::sort(parts.begin(), parts.end());
   for (std::size_t k = 1; k < parts.size(); ++k)
     if (parts[k].first == parts[k - 1].first)
       throw UserError(parts[k].second.string() + ": realisation " + std::to_string(parts[k].first) +
                       " is also in " + parts[k - 1].second.string());
-  FitOptions fit;
-  fit.window = window_of(o.window, *first);
-  fit.resamples = o.resamples;
+  const FitOptions fit = fit_options(o.resamples, o.window, *first);
   EnsembleSums sums(*first);
   for (const auto& [index, p] : parts) sums.add(read_realisation(p, index), p.string());
   const auto dir = prepare_output_dir(o.out, o.force);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_ensemble_folder(dir, sums, fit, wall, 1);
+  const EnsembleFits fits = write_ensemble_folder(dir, sums, fit, wall, 1);
+  std::fputs(exponent_table(sums, fits).c_str(), stdout);
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: merged %llu realisations from %zu folders into %s\n",
                  static_cast<unsigned long long>(sums.count()), o.inputs.size(), dir.c_str());
@@ -80,13 +97,13 @@ void run(const MergeOptions& o) {
 void add_merge_command(CLI::App& app) {
   auto opt = std::make_shared<MergeOptions>();
   auto* sub = app.add_subcommand(
-      "merge", "Combine ensemble folders made with --per-realisation into one ensemble");
+      "merge",
+      "Combine ensemble folders holding realisations/ (--per-realisation, or killed) into one "
+      "ensemble; prints the exponents on stdout");
   sub->add_option("folders", opt->inputs, "Ensemble folders (same physics and sampling)")
       ->required();
   add_output_options(*sub, opt->out, opt->force, opt->quiet)->required();
-  sub->add_option("--resamples", opt->resamples, "Bootstrap resamples of the exponent intervals")
-      ->capture_default_str();
-  add_window_option(*sub, opt->window);
+  add_fit_options(*sub, opt->resamples, opt->window);
   sub->callback([opt] { run(*opt); });
 }
 

@@ -13,7 +13,7 @@ namespace gs::test {
 
 struct CommandResult {
   int exit_code = -1;
-  std::string err;
+  std::string err, out;
   int err_lines() const {
     int n = 0;
     for (char ch : err) n += ch == '\n';
@@ -37,19 +37,26 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
-// Runs `grainshock ARGS` with stdout discarded and stderr captured; `env` is an optional
-// prefix of VAR=value assignments.
-inline CommandResult grainshock(const std::string& args, const std::string& env = "") {
-  const auto err_file = std::filesystem::temp_directory_path() /
-                        ("grainshock_test_err_" + std::to_string(::getpid()));
-  const std::string cmd =
-      env + " " + GRAINSHOCK_BINARY + " " + args + " >/dev/null 2>" + err_file.string();
+// Runs `PROGRAM ARGS` with stdout and stderr captured; `env` is an optional prefix of VAR=value
+// assignments.
+inline CommandResult run_program(const std::string& program, const std::string& args,
+                                 const std::string& env = "") {
+  const auto tmp =
+      std::filesystem::temp_directory_path() / ("grainshock_test_" + std::to_string(::getpid()));
+  const auto err_file = tmp.string() + ".err", out_file = tmp.string() + ".out";
+  const std::string cmd = env + " " + program + " " + args + " >" + out_file + " 2>" + err_file;
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   r.err = read_file(err_file);
+  r.out = read_file(out_file);
   std::filesystem::remove(err_file);
+  std::filesystem::remove(out_file);
   return r;
+}
+
+inline CommandResult grainshock(const std::string& args, const std::string& env = "") {
+  return run_program(GRAINSHOCK_BINARY, args, env);
 }
 
 }  // namespace gs::test

@@ -1,9 +1,20 @@
 // The contract of `grainshock ensemble` and `grainshock merge`: results independent of the thread
-// count and of how the ensemble was split; bad input refused in one line with nothing written.
+// count, of the MPI ranks, of how the ensemble was split and of kills and resumes; the exponents
+// on stdout; bad input refused in one line with nothing written.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <thread>
 
 #include "analysis/table.h"
 #include "tests/apps/cli_test_util.h"
@@ -147,6 +158,204 @@ TEST(CliEnsemble, BadInputIsRefusedInOneLineAndWritesNothing) {
   const std::string before = read_file(a / "summary.json");
   expect_refused("ensemble " + kPhysics + " --realisations 1 --out " + a.string(), a, before);
   expect_refused("merge " + a.string() + " --out " + a.string(), a, before);
+
+  // Merging into one of the inputs, even with --force and through another spelling, or inside it.
+  expect_refused(
+      "merge " + a.string() + " --force --out " + a.string() + "/../" + a.filename().string(), a,
+      before);
+  expect_refused("merge " + a.string() + " --force --out " + (a / "realisations").string(), a,
+                 before);
+  EXPECT_EQ(read_file(a / "realisations/000000/timeseries.csv").empty(), false);
+  // The same bound on the bootstrap for both commands.
+  expect_refused("ensemble " + kPhysics + " --resamples 0" + to, out, "");
+  expect_refused("merge " + a.string() + " --resamples 0" + to, out, "");
+  expect_refused("merge " + a.string() + " --resamples 9" + to, out, "");
+}
+
+// The last column of the stdout table's row for `quantity`.
+double table_exponent(const std::string& out, const std::string& quantity) {
+  std::smatch m;
+  const std::regex row("\\n" + quantity + " +(-?[0-9.]+) ");
+  if (!std::regex_search(out, m, row)) return NAN;
+  return std::stod(m[1]);
+}
+
+TEST(CliEnsemble, ExponentsGoToStdoutEvenWhenQuiet) {
+  const auto dir = scratch_dir("e"), merged = scratch_dir("m"), again = scratch_dir("again");
+  auto r =
+      grainshock("ensemble " + kPhysics +
+                 " --realisations 3 --per-realisation --window 200,1500 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // --quiet: no progress, no notes
+  ASSERT_NE(r.out.find("quantity"), std::string::npos) << r.out;
+  const std::string summary = read_file(dir / "summary.json");
+  for (const char* q : {"N_t", "E_t", "R_t", "v_t"}) {
+    const double e = table_exponent(r.out, q);
+    ASSERT_TRUE(std::isfinite(e)) << q << "\n" << r.out;
+    // The table rounds summary.json's exponent to 4 decimals.
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(
+        summary, m,
+        std::regex("\"quantity\": \"" + std::string(q) + "\"[^}]*\"exponent\": (-?[0-9.e-]+)")));
+    EXPECT_NEAR(e, std::stod(m[1]), 5e-5) << q;
+  }
+  // merge prints the same table; ensemble.toml holds the fit flags, so it is a --config that
+  // reproduces the folder.
+  const std::string table = r.out;
+  r = grainshock("merge --quiet " + dir.string() + " --window 200,1500 --out " + merged.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, table);
+  r = grainshock("ensemble --quiet --config " + (dir / "ensemble.toml").string() + " --out " +
+                 again.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_files(dir, again);
+  EXPECT_TRUE(fs::is_directory(again / "realisations/000002"));
+}
+
+// Starts `grainshock ARGS` as a child with its output discarded.
+pid_t spawn_grainshock(const std::string& args) {
+  std::vector<std::string> words = {GRAINSHOCK_BINARY};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+std::size_t finished_count(const fs::path& rdir) {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(rdir, ec))
+    n += e.is_directory() && !e.path().filename().string().starts_with(".");
+  return n;
+}
+
+// Slower realisations than kPhysics (about 0.15 s each), so that a kill lands between them.
+const std::string kSlow = "--particles 20000 --restitution 0.5 --t-max 20000 --quiet";
+
+TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
+  const auto whole = scratch_dir("whole"), killed = scratch_dir("killed"),
+             partial = scratch_dir("partial");
+  const std::string job = "ensemble " + kSlow + " --realisations 8 --threads 1 --out ";
+  auto r = grainshock(job + whole.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(whole / "realisations"));  // removed once finished without the flag
+
+  const pid_t pid = spawn_grainshock(job + killed.string());
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (finished_count(killed / "realisations") == 0 &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the ensemble finished before the kill: make it slower";
+  const std::size_t held = finished_count(killed / "realisations");
+  ASSERT_GE(held, 1u);
+  ASSERT_LT(held, 8u);
+  EXPECT_FALSE(fs::exists(killed / "summary.json"));
+  // A writer killed mid-folder leaves a temporary; the resume removes it.
+  fs::create_directories(killed / "realisations/.000007.tmp.1");
+
+  // The killed folder is usable by merge: it holds what finished.
+  r = grainshock("merge " + killed.string() + " --out " + partial.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("of 8 realisations finished"), std::string::npos) << r.err;
+  EXPECT_NE(read_file(partial / "summary.json").find("\"realisations\": " + std::to_string(held)),
+            std::string::npos);
+
+  // Other settings into the killed folder are refused, and leave it as it was.
+  r = grainshock("ensemble " + kSlow + " --realisations 9 --out " + killed.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_EQ(finished_count(killed / "realisations"), held);
+
+  // The same command again (another thread count is the same job) runs the rest.
+  r = grainshock("ensemble " + kSlow + " --realisations 8 --threads 2 --out " + killed.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_files(whole, killed);
+  EXPECT_FALSE(fs::exists(killed / "realisations"));
+  // Finished now: running it again is refused as for any folder with results.
+  r = grainshock(job + killed.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+}
+
+// A folder killed before realisations 1 and 2 finished, with a file in the way of 2's folder (it
+// cannot be written); `prefix` runs the command (mpirun for several ranks).
+test::CommandResult resume_with_realisation_2_blocked(const fs::path& dir,
+                                                      const std::string& prefix) {
+  const std::string job = "ensemble " + kPhysics + " --realisations 4 --per-realisation --out ";
+  EXPECT_EQ(grainshock(job + dir.string()).exit_code, 0);
+  fs::remove(dir / "summary.json");
+  fs::remove_all(dir / "realisations/000001");
+  fs::remove_all(dir / "realisations/000002");
+  std::ofstream(dir / "realisations/000002") << "in the way\n";
+  return test::run_program(prefix + GRAINSHOCK_BINARY, job + dir.string());
+}
+
+// A realisation that cannot be kept is reported by its index (and rank, under MPI), the others
+// are kept, and the exit code is that of a user error.
+TEST(CliEnsemble, AFailedRealisationIsNamedAndTheOthersAreKept) {
+  const auto dir = scratch_dir("failed");
+  const auto r = resume_with_realisation_2_blocked(dir, "");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("realisation 2: cannot write"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_directory(dir / "realisations/000001"));  // ran and kept
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+}
+
+#ifdef GRAINSHOCK_MPIEXEC
+std::string mpirun(int ranks) {
+  std::string cmd =
+      std::string(GRAINSHOCK_MPIEXEC) + " -n " + std::to_string(ranks) + " --oversubscribe";
+  if (::geteuid() == 0) cmd += " --allow-run-as-root";
+  return cmd + " ";
+}
+#endif
+
+TEST(CliEnsemble, MpiRanksGiveTheBytesOfThreads) {
+#ifndef GRAINSHOCK_MPIEXEC
+  GTEST_SKIP() << "built without MPI (GRAINSHOCK_MPI off or no MPI found by CMake)";
+#else
+  const auto threads = scratch_dir("threads"), ranks = scratch_dir("ranks"),
+             idle = scratch_dir("idle"), two = scratch_dir("two");
+  const std::string job = "ensemble " + kPhysics + " --realisations 5 ";
+  auto r = grainshock(job + "--threads 2 --out " + threads.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_program(mpirun(2) + GRAINSHOCK_BINARY, job + "--threads 1 --out " + ranks.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_files(threads, ranks);
+  EXPECT_EQ(r.out, grainshock(job + "--threads 1 --out " + scratch_dir("t1").string()).out);
+
+  // More ranks than realisations: allowed, and rank 0 says which ranks stay idle.
+  r = grainshock("ensemble " + kPhysics + " --realisations 2 --threads 1 --out " + two.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_program(mpirun(3) + GRAINSHOCK_BINARY,
+                        "ensemble " + kPhysics.substr(0, kPhysics.find(" --quiet")) +
+                            " --realisations 2 --threads 1 --out " + idle.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("ranks 2-2 idle"), std::string::npos) << r.err;
+  expect_same_files(two, idle);
+
+  // A failure on rank 1 is reported by rank and realisation, once.
+  const auto failed = scratch_dir("failed");
+  r = resume_with_realisation_2_blocked(failed, mpirun(2));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("grainshock: error: rank 1, realisation 2: cannot write"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::is_directory(failed / "realisations/000001"));
+#endif
 }
 
 }  // namespace
