@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -241,12 +242,15 @@ std::string exponent_table(const EnsembleSums& sums, const EnsembleFits& fits) {
                 "theory alpha = %.4f\n",
                 static_cast<unsigned long long>(sums.count()), fits.alpha_theory);
   std::string s = line;
-  std::snprintf(line, sizeof line, "%-8s %9s %9s %9s %9s %9s %9s  note\n", "quantity", "exponent",
-                "ci_lo", "ci_hi", "theory", "alpha", "alpha_err");
+  int width = 8;
+  for (const auto& e : fits.exponents) width = std::max(width, int(e.quantity.size()));
+  std::snprintf(line, sizeof line, "%-*s %9s %9s %9s %9s %9s %9s  note\n", width, "quantity",
+                "exponent", "ci_lo", "ci_hi", "theory", "alpha", "alpha_err");
   s += line;
   for (const auto& e : fits.exponents) {
-    std::snprintf(line, sizeof line, "%-8s %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f", e.quantity.c_str(),
-                  e.fit.exponent, e.fit.ci_lo, e.fit.ci_hi, e.theory, e.alpha, e.alpha_uncertainty);
+    std::snprintf(line, sizeof line, "%-*s %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f", width,
+                  e.quantity.c_str(), e.fit.exponent, e.fit.ci_lo, e.fit.ci_hi, e.theory, e.alpha,
+                  e.alpha_uncertainty);
     s += line;
     s += (e.note.empty() ? "" : "  " + e.note) + "\n";
   }
