@@ -346,6 +346,10 @@ int serve_ensemble(Ranks& ranks) {
       }
     }
     while (auto s = ranks.poll()) {
+      if (s->tag == Ranks::kFinishTag) {  // rank 0 ended the job early (an internal error)
+        request_stop();
+        return std::stoi(s->payload);
+      }
       GS_CHECK_MSG(s->tag == kStop, "unexpected message between ranks");
       local.stop_pulling();
       if (const int sig = std::stoi(s->payload); sig != 0) request_stop(sig);
