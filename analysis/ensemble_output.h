@@ -1,10 +1,9 @@
 #pragma once
 // The files of an ensemble folder, written from the sums alone so that the one-shot ensemble and
 // `grainshock merge` of its split parts write the same bytes:
-//   ensemble.toml               the job (physics, grid, snapshot times, bins, fit),
-//   --config-readable realisations/NNNNNN/        each realisation's contribution
-//   (analysis/realisation.h), written
-//                               as it finishes; kept with --per-realisation (input of merge)
+//   ensemble.toml               the job (physics, grid, snapshot times, bins, fit); a --config
+//   realisations/NNNNNN/        one realisation (analysis/realisation.h), written as it
+//                               finishes; kept with --per-realisation (input of merge)
 //   timeseries_mean.csv         t, t_paper, then mean c and standard error c_sem of every column
 //   distributions_mean.csv      per snapshot time and bin: P(R,t), P(v,t), their scaled forms
 //                               (x_R = R t^-alpha, f1 = t^alpha P; x_v = v t^(1-alpha),

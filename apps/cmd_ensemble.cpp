@@ -142,12 +142,14 @@ int run(const EnsembleOptions& o) {
 
 bool holds_unfinished_ensemble(const fs::path& dir) {
   std::error_code ec;
-  if (!fs::is_regular_file(dir / "ensemble.toml", ec) ||
-      !fs::is_directory(dir / "realisations", ec))
-    return false;
+  if (!fs::is_regular_file(dir / "ensemble.toml", ec)) return false;
+  // Killed before the results were written (ensemble.toml is written before anything runs).
+  if (!fs::exists(dir / "summary.json", ec)) return true;
+  // Finished without --per-realisation (realisations/ is removed then), or merged.
+  if (!fs::is_directory(dir / "realisations", ec)) return false;
+  // Interrupted (SIGINT, SIGTERM) with the results of the realisations finished by then.
   const EnsembleSpec spec = read_job(dir / "ensemble.toml").spec;
-  return !fs::exists(dir / "summary.json", ec) ||
-         finished_realisations(dir / "realisations", spec).size() < spec.realisations;
+  return finished_realisations(dir / "realisations", spec).size() < spec.realisations;
 }
 
 int resume_ensemble(const fs::path& dir, int threads, bool quiet) {

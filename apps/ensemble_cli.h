@@ -30,9 +30,10 @@ EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const Ensem
 EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
                                    const FitOptions& fit, double wall_seconds, int threads);
 
-// For `grainshock resume DIR`: whether DIR holds an ensemble that can be resumed (ensemble.toml
-// and realisations/, with realisations missing or the results not written), and resuming it.
-// resume_ensemble returns the exit code; UserError if DIR holds no unfinished ensemble.
+// For `grainshock resume DIR`: whether DIR holds an ensemble that can be resumed (ensemble.toml,
+// with the results not written or realisations missing), and resuming it with the settings of
+// its ensemble.toml. resume_ensemble returns the exit code; UserError if DIR holds no unfinished
+// ensemble. Under mpirun every rank calls it; ranks other than 0 serve rank 0.
 bool holds_unfinished_ensemble(const std::filesystem::path& dir);
 int resume_ensemble(const std::filesystem::path& dir, int threads, bool quiet);
 

@@ -289,6 +289,30 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
   EXPECT_EQ(r.err_lines(), 1) << r.err;
 }
 
+TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
+  const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
+  const std::string job = "ensemble " + kSlow + " --realisations 6 --threads 1 --out ";
+  ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
+  const pid_t pid = spawn_grainshock(job + stopped.string());
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (finished_count(stopped / "realisations") == 0 &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);  // interrupted, with the files of what finished
+  const std::size_t held = finished_count(stopped / "realisations");
+  ASSERT_LT(held, 6u) << "the ensemble finished before the interrupt: make it slower";
+  EXPECT_NE(read_file(stopped / "summary.json").find("\"realisations\": " + std::to_string(held)),
+            std::string::npos);
+  const auto r = grainshock(job + stopped.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_files(whole, stopped);
+}
+
 // A folder killed before realisations 1 and 2 finished, with a file in the way of 2's folder (it
 // cannot be written); `prefix` runs the command (mpirun for several ranks).
 test::CommandResult resume_with_realisation_2_blocked(const fs::path& dir,
