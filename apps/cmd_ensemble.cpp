@@ -193,6 +193,13 @@ void add_ensemble_command(CLI::App& app) {
   sub->add_flag("--per-realisation", opt->per_realisation,
                 "Keep OUT/realisations/ once finished (input of grainshock merge); it is always "
                 "written while the ensemble runs, so that a killed one resumes");
+  sub->footer(
+      "The table of exponents goes to stdout (also with --quiet). Each realisation is written "
+      "into OUT/realisations/ as it finishes: the same command into a folder holding an "
+      "unfinished ensemble (killed or interrupted) runs only the missing realisations, with the "
+      "same bytes as an uninterrupted run. Under mpirun -n K the realisations are split over K "
+      "ranks of --threads each; rank 0 writes and prints. Results do not depend on K, --threads "
+      "or resumes.");
   sub->callback([opt] {
     const int rc = run(*opt);
     if (rc != 0) std::exit(rc);
