@@ -14,6 +14,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/ensemble_cli.h"
+#include "apps/exit_code.h"
 #include "apps/progress.h"
 #include "sim/error.h"
 #include "sim/stop.h"
@@ -102,7 +103,7 @@ int run_job(const fs::path& dir, const EnsembleJob& job, int threads, bool quiet
                  static_cast<unsigned long long>(timing.realisations), wall,
                  ranks.size() > 1 ? (std::to_string(ranks.size()) + " ranks x ").c_str() : "",
                  threads, dir.c_str());
-  return r.interrupted ? 128 + std::max(0, stop_signal()) : 0;
+  return r.interrupted ? kExitInterrupted : 0;
 }
 
 int run(const EnsembleOptions& o) {
@@ -202,7 +203,7 @@ void add_ensemble_command(CLI::App& app) {
       "or resumes.");
   sub->callback([opt] {
     const int rc = run(*opt);
-    if (rc != 0) std::exit(rc);
+    if (rc != 0) throw Exit{rc};
   });
 }
 

@@ -6,6 +6,7 @@
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/exit_code.h"
 #include "apps/front_movie.h"
 #include "sim/config.h"
 #include "sim/stop.h"
@@ -83,7 +84,7 @@ void add_movie_command(CLI::App& app) {
     const auto dir = prepare_output_dir(opt->out, opt->force);
     write_file_atomic(dir / "run.toml", to_toml(opt->physics));
     const FrontMovieResult r = write_front_movie(opt->physics, opt->movie, dir);
-    if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
+    if (r.stopped) throw Exit{kExitInterrupted};
   });
 }
 

@@ -11,6 +11,7 @@
 #include "analysis/json.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/exit_code.h"
 #include "apps/front_movie.h"
 #include "apps/progress.h"
 #include "render/field.h"
@@ -264,7 +265,7 @@ int run(const RunOptions& o) {
     std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s\n",
                  interrupted ? "interrupted" : "finished", to_string(o.physics.initial),
                  static_cast<long long>(sim->stats().collisions), run_s, dir.c_str());
-  return interrupted ? 128 + std::max(0, stop_signal()) : 0;
+  return interrupted ? kExitInterrupted : 0;
 }
 
 }  // namespace
@@ -310,7 +311,7 @@ void add_run_command(CLI::App& app) {
       *opt = demo;
     }
     const int rc = run(*opt);
-    if (rc != 0) std::exit(rc);
+    if (rc != 0) throw Exit{rc};
   });
 }
 

@@ -11,5 +11,6 @@ void add_movie_command(CLI::App& app);
 void add_ensemble_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_figures_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace gs::app

@@ -2,32 +2,100 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace gs::app {
+namespace {
+
+// First line after half a second; a terminal line is redrawn 5 times a second, a log gets a line
+// every 5 s.
+constexpr double kFirst = 0.5, kTtyEvery = 0.2, kLogEvery = 5.0;
+
+std::string duration_text(double s) {
+  char buf[32];
+  if (s < 99.5)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 99.5 * 60)
+    std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  return buf;
+}
+
+}  // namespace
 
 Progress::Progress(bool quiet)
-    : quiet_(quiet), tty_(isatty(STDERR_FILENO) == 1), start_(Clock::now()), last_(start_) {}
+    : quiet_(quiet), tty_(isatty(STDERR_FILENO) == 1), start_(Clock::now()) {
+  if (!quiet_) ticker_ = std::thread([this] { tick(); });
+}
+
+Progress::~Progress() {
+  done();
+}
+
+double Progress::eta(double ref_wall, double ref_fraction, double wall, double fraction) {
+  if (!(fraction > 0 && fraction < 1 && wall > 0)) return -1;
+  double end = wall / fraction;  // steady rate since the start
+  if (ref_fraction > 0 && ref_wall > 0 && ref_wall < wall && fraction > ref_fraction) {
+    const double beta = std::log(fraction / ref_fraction) / std::log(wall / ref_wall);
+    end = wall * std::pow(1 / fraction, 1 / beta);
+  }
+  return std::isfinite(end) && end - wall < 1e8 ? end - wall : -1;
+}
 
 void Progress::update(double fraction, const std::string& what) {
   if (quiet_) return;
-  const auto now = Clock::now();
-  const double since_last = std::chrono::duration<double>(now - last_).count();
-  if (since_last < (tty_ ? 0.2 : 5.0)) return;
-  last_ = now;
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  char eta[64] = "";
-  if (fraction > 1e-3 && fraction < 1)
-    std::snprintf(eta, sizeof eta, ", ETA %.0f s", elapsed * (1 - fraction) / fraction);
-  std::fprintf(stderr, "%s%5.1f%% %s%s%s", tty_ ? "\r\033[K" : "", 100 * fraction, what.c_str(),
-               eta, tty_ ? "" : "\n");
+  const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
+  std::lock_guard lock(mutex_);
+  fraction_ = fraction;
+  wall_ = wall;
+  what_ = what;
+  have_ = true;
+  if (history_.empty() || wall >= 1.02 * history_.back().first + 0.01)
+    history_.emplace_back(wall, fraction);
+  // Keep the newest sample at or before half the elapsed time as the front.
+  while (history_.size() > 1 && history_[1].first <= wall / 2) history_.pop_front();
+}
+
+void Progress::print_locked() {
+  const double now = std::chrono::duration<double>(Clock::now() - start_).count();
+  std::string line = "  0.0% starting";
+  if (have_) {
+    char pct[16];
+    std::snprintf(pct, sizeof pct, "%5.1f%% ", 100 * fraction_);
+    line = pct + what_;
+    const auto& [ref_wall, ref_fraction] = history_.front();
+    const double left = eta(ref_wall, ref_fraction, wall_, fraction_);
+    if (left >= 0) line += ", ETA " + duration_text(std::max(0.0, left - (now - wall_)));
+  }
+  line += ", " + duration_text(now) + " elapsed";
+  std::fprintf(stderr, "%s%s%s", tty_ ? "\r\033[K" : "", line.c_str(), tty_ ? "" : "\n");
   std::fflush(stderr);
   printed_ = true;
 }
 
+void Progress::tick() {
+  std::unique_lock lock(mutex_);
+  auto next =
+      start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kFirst));
+  const auto every = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(tty_ ? kTtyEvery : kLogEvery));
+  while (!wake_.wait_until(lock, next, [this] { return stopping_; })) {
+    print_locked();
+    next += every;
+  }
+}
+
 void Progress::done() {
-  if (quiet_ || !printed_ || !tty_) return;
-  std::fprintf(stderr, "\n");
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_) return;
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
+  if (printed_ && tty_) std::fprintf(stderr, "\n");
 }
 
 }  // namespace gs::app

@@ -16,24 +16,12 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include "render/av_error.h"
 #include "sim/error.h"
 
 namespace gs::render {
 
 namespace {
-
-std::string av_error_text(int err) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {};
-  if (av_strerror(err, buf, sizeof buf) < 0) std::snprintf(buf, sizeof buf, "libav error %d", err);
-  return buf;
-}
-
-// Library calls that fail for reasons outside the program (disk full, unwritable folder, an
-// encoder refusing a size) are the user's to fix: one line naming the movie and libav's reason.
-void check_av(int ret, const std::filesystem::path& path, const char* what) {
-  if (ret < 0)
-    throw UserError("movie '" + path.string() + "': " + what + ": " + av_error_text(ret));
-}
 
 std::string shortest(double v) {
   char buf[32];

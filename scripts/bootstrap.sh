@@ -12,7 +12,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev
   libosmesa6-dev libegl-dev libgl-dev libpng-dev libfreetype-dev fonts-dejavu-core
-  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
 )
 # Optional for users, installed for the tests so that CI runs them: MPI ensembles.

@@ -1,5 +1,5 @@
 #pragma once
-// Test helpers: decode a movie with libavformat/libavcodec and compare pictures.
+// Test helpers: decode a whole movie with render::MovieReader and compare pictures.
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -12,7 +12,7 @@ extern "C" {
 
 namespace gs::render {
 
-// PSNR over the RGB channels of the top-left w x h of both images.
+// PSNR over the RGB channels of the top-left w x h of both images, 99 dB when identical.
 double psnr(const Image& a, const Image& b, int w, int h);
 
 struct Decoded {
@@ -30,7 +30,7 @@ struct Decoded {
   Image rgb;                     // the frame asked for, back to RGB (BT.709, limited range)
 };
 
-// Decodes the whole movie (failing the current test on a libav error); frame `keep`, in
+// Decodes the whole movie (failing the current test on an error); frame `keep`, in
 // presentation order, is converted back to RGBA with BT.709 limited-range coefficients.
 Decoded decode_movie(const std::filesystem::path& path, int keep = -1);
 

@@ -8,7 +8,7 @@
 
 #include "render/png.h"
 #include "tests/apps/cli_test_util.h"
-#include "tests/render/golden.h"
+#include "render/image_compare.h"
 
 namespace gs {
 namespace {
@@ -120,7 +120,7 @@ TEST(RenderCli, EglMatchesOsmesaWhereAvailable) {
   ASSERT_EQ(run(args + "--gl osmesa --out " + a.string()).exit_code, 0);
   const Result r = run(args + "--gl egl --out " + b.string());
   if (r.exit_code != 0) GTEST_SKIP() << "no EGL here: " << r.err;
-  const auto c = test::compare_images(render::read_png(b.string()), render::read_png(a.string()));
+  const auto c = render::compare_images(render::read_png(b.string()), render::read_png(a.string()));
   EXPECT_TRUE(c.match()) << c.differing << " pixels differ";
 }
 

@@ -11,13 +11,13 @@
 #include "render/renderer.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "render/image_compare.h"
 #include "tests/render/golden.h"
 
 namespace gs::render {
 namespace {
 
 using test::check_golden;
-using test::compare_images;
 
 Renderer& renderer() {
   static Renderer r;  // one context for the whole test program, as a movie would use it

@@ -1,0 +1,219 @@
+// The command line as a whole, through the binary: the exit-code table of apps/exit_code.h,
+// unknown words named with a suggestion, --version everywhere, and the bash completion script.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <regex>
+#include <thread>
+
+#include "tests/apps/cli_test_util.h"
+
+extern char** environ;
+
+namespace gs::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The subcommands as `grainshock --help` lists them.
+std::vector<std::string> subcommands() {
+  const std::string help = grainshock("--help").out;
+  std::vector<std::string> names;
+  const auto at = help.find("Subcommands:");
+  EXPECT_NE(at, std::string::npos) << help;
+  const std::regex line(R"(\n  ([a-z]+) )");
+  for (std::sregex_iterator it(help.begin() + at, help.end(), line), end; it != end; ++it)
+    names.push_back((*it)[1]);
+  return names;
+}
+
+TEST(CliUsage, HelpListsEverySubcommandAndTheExitCodes) {
+  const auto names = subcommands();
+  for (const char* want :
+       {"run", "render", "movie", "ensemble", "merge", "figures", "bench", "compare", "completion"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  const auto r = grainshock("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* row :
+       {"  0    success", "  1    user error", "  2    usage error", "  130  interrupted"})
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+  EXPECT_NE(grainshock("run --help").out.find("Exit codes: 0 success, 1 user error"),
+            std::string::npos);
+}
+
+TEST(CliUsage, VersionOnEverySubcommand) {
+  const std::string top = grainshock("--version").out;
+  EXPECT_TRUE(std::regex_match(top, std::regex(R"(\d+\.\d+\.\d+\n)"))) << top;
+  for (const std::string& sub : subcommands()) {
+    const auto r = grainshock(sub + " --version");
+    EXPECT_EQ(r.exit_code, 0) << sub << ": " << r.err;
+    EXPECT_EQ(r.out, top) << sub;
+  }
+}
+
+TEST(CliUsage, UnknownWordsAreNamedWithTheNearestValidOne) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"rnu", "unknown subcommand 'rnu'; did you mean 'run'?"},
+      {"rendr x.xyz", "unknown subcommand 'rendr'; did you mean 'render'?"},
+      {"frobnicate", "unknown subcommand 'frobnicate'"},
+      {"run --partcles 10", "unknown flag '--partcles' for 'run'; did you mean '--particles'?"},
+      {"run --particles 10 --t-mx 5", "unknown flag '--t-mx' for 'run'; did you mean '--t-max'?"},
+      {"movie --particels 10",
+       "unknown flag '--particels' for 'movie'; did you mean '--particles'?"},
+      {"--verison", "unknown flag '--verison'; did you mean '--version'?"},
+      {"compare a.png b.png --tolerence=3",
+       "unknown flag '--tolerence' for 'compare'; did you mean '--tolerance'?"},
+      {"run --zzzzzz", "unknown flag '--zzzzzz' for 'run'"},
+      {"", "a subcommand is required: run, render,"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = grainshock(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("grainshock: error: " + message, 0), 0u) << args << ": " << r.err;
+  }
+  // A flag far from every valid one gets no guess.
+  EXPECT_EQ(grainshock("run --zzzzzz").err.find("did you mean"), std::string::npos);
+}
+
+// Child `grainshock ARGS...` with stdout to /dev/null and stderr to `err` (default /dev/null).
+pid_t spawn(std::vector<std::string> args, const std::string& err = "/dev/null") {
+  args.insert(args.begin(), GRAINSHOCK_BINARY);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  EXPECT_EQ(posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
+// Waits for `file` to appear (the child is past its set-up), then sends `sig`; the exit code.
+int interrupt_when(pid_t pid, const fs::path& file, int sig) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(file) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(kill(pid, sig), 0);
+  int status = 0;
+  EXPECT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status)) << "killed by the signal instead of winding down";
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+TEST(CliUsage, ExitCodeTable) {
+  const fs::path dir = scratch_dir("codes");
+  fs::create_directories(dir / "full");
+  std::ofstream(dir / "full" / "old.txt") << "earlier results\n";
+  const std::string small = "--dim 2 --particles 200 --t-max 20 --quiet --out ";
+  struct Case {
+    std::string args;
+    int code;
+  };
+  const std::vector<Case> cases = {
+      {"--version", 0},
+      {"run --help", 0},
+      {"run " + small + (dir / "ok").string(), 0},
+      {"completion bash", 0},
+      // user errors: the command line is understood, but what it asks cannot be done
+      {"run " + small + (dir / "full").string(), 1},
+      {"run --density 0.9 --out " + (dir / "dense").string(), 1},
+      {"render " + (dir / "missing.xyz").string() + " --out " + (dir / "m.png").string(), 1},
+      {"merge " + (dir / "full").string() + " --out " + (dir / "merged").string(), 1},
+      // usage errors: the command line itself
+      {"", 2},
+      {"rnu", 2},
+      {"run --partcles 10", 2},
+      {"run --particles ten", 2},
+      {"run --initial warm", 2},
+      {"run --per-decade 0", 2},
+      {"run --particles", 2},
+      {"compare", 2},
+      {"completion fish", 2},
+      {"ensemble --realisations", 2},
+  };
+  for (const Case& c : cases) {
+    const auto r = grainshock(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << c.args << ": " << r.err;
+    if (c.code != 0) {
+      EXPECT_EQ(r.err_lines(), 1) << c.args << ": " << r.err;
+    }
+  }
+  EXPECT_EQ(read_file(dir / "full" / "old.txt"), "earlier results\n");
+
+  // Interrupted: 130 for SIGINT and SIGTERM alike, with the files written so far complete.
+  for (int sig : {SIGINT, SIGTERM}) {
+    const fs::path out = dir / ("stopped_" + std::to_string(sig));
+    const pid_t pid = spawn({"run", "--dim", "3", "--particles", "20000", "--t-max", "1e7",
+                             "--quiet", "--out", out.string()});
+    EXPECT_EQ(interrupt_when(pid, out / "timeseries.csv", sig), 130) << "signal " << sig;
+    EXPECT_NE(read_file(out / "summary.json").find("\"interrupted\": true"), std::string::npos)
+        << read_file(out / "summary.json");
+  }
+}
+
+// Without a terminal, progress is a plain line every few seconds, the first after half a second
+// (before, a run shorter than 5 s printed none): here the first line of a run of minutes.
+TEST(CliUsage, ProgressLineWithoutTerminal) {
+  const fs::path dir = scratch_dir("progress");
+  fs::create_directories(dir);
+  const fs::path err = dir / "stderr.txt";
+  const pid_t pid = spawn({"run", "--dim", "3", "--particles", "20000", "--t-max", "1e7", "--out",
+                           (dir / "run").string()},
+                          err.string());
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (read_file(err).find(" elapsed\n") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  const std::string text = read_file(err);
+  const auto first = text.substr(0, text.find('\n'));
+  EXPECT_TRUE(
+      std::regex_match(first, std::regex(R"( *\d+\.\d% .*, (ETA \d+ (s|min|h), )?\d+ s elapsed)")))
+      << text;
+  EXPECT_EQ(text.find('\r'), std::string::npos) << "no terminal, no redrawing";
+}
+
+// The completion script names every subcommand and each one's flags, and bash completes with it.
+TEST(CliUsage, BashCompletionFromTheCommandTree) {
+  const auto r = grainshock("completion bash");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& sub : subcommands())
+    EXPECT_NE(r.out.find(" " + sub + ") words=\""), std::string::npos) << sub;
+  for (const char* flag : {"--particles", "--t-max", "--restitution", "--tolerance", "--diff",
+                           "--realisations", "--version"})
+    EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+
+  const fs::path dir = scratch_dir("completion");
+  fs::create_directories(dir);
+  const fs::path script = dir / "grainshock.bash";
+  std::ofstream(script) << r.out;
+  // COMPREPLY for a command line typed so far, from the script run by bash itself.
+  auto complete = [&](const std::string& words) {
+    const fs::path out = dir / "reply.txt";
+    const std::string cmd = "bash -c 'source " + script.string() + " && COMP_WORDS=(" + words +
+                            ") && COMP_CWORD=$((${#COMP_WORDS[@]} - 1)) && _grainshock && "
+                            "echo \"${COMPREPLY[*]}\"' > " +
+                            out.string() + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    return read_file(out);
+  };
+  EXPECT_EQ(complete("grainshock ru"), "run\n");
+  EXPECT_EQ(complete("grainshock com"), "compare completion\n");
+  EXPECT_EQ(complete("grainshock run --partic"), "--particles\n");
+  EXPECT_EQ(complete("grainshock compare --diff x.png --upd"), "--update\n");
+  EXPECT_EQ(complete("grainshock render --t-m"), "\n") << "render has no --t-max";
+}
+
+}  // namespace
+}  // namespace gs::test
