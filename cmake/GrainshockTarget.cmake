@@ -13,11 +13,22 @@ if(GRAINSHOCK_AVX2)
                         GRAINSHOCK_HOST_HAS_X86_64_V3)
 endif()
 
+# ASan + UBSan for the whole suite (README, "Sanitizers"). Options are PUBLIC so that whatever
+# links a sanitized library, the installed example included, is linked with the runtimes too.
+option(GRAINSHOCK_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
+
 function(grainshock_defaults target)
   target_compile_features(${target} PUBLIC cxx_std_20)
   set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
+  # PUBLIC: code that includes the headers must agree on Eigen's alignment (see above).
   if(GRAINSHOCK_AVX2 AND GRAINSHOCK_HOST_HAS_X86_64_V3)
-    target_compile_options(${target} PRIVATE -march=x86-64-v3 -mno-fma)
+    target_compile_options(${target} PUBLIC -march=x86-64-v3 -mno-fma)
+  endif()
+  if(GRAINSHOCK_SANITIZE)
+    # -fno-sanitize-recover: a UBSan finding fails the test instead of scrolling past.
+    set(san -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    target_compile_options(${target} PUBLIC ${san})
+    target_link_options(${target} PUBLIC ${san})
   endif()
 endfunction()
