@@ -32,6 +32,7 @@ void add_bench_command(CLI::App& app) {
   sub->callback([opt] {
     std::vector<bench::Case> cases;
     bench::add_sim_cases(cases);
+    bench::add_run_cases(cases);
     bench::add_render_cases(cases);
     bench::add_movie_cases(cases);
     bench::add_figures_cases(cases);

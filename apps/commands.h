@@ -5,6 +5,9 @@
 namespace gs::app {
 
 void add_run_command(CLI::App& app);
+void add_resume_command(CLI::App& app);
+// --checkpoint-every of run and resume.
+void add_checkpoint_option(CLI::App& sub, double& every);
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_movie_command(CLI::App& app);

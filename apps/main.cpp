@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
       "grainshock: event-driven simulation, analysis and rendering of a kicked granular gas"};
   app.require_subcommand(1);
   add_run_command(app);
+  add_resume_command(app);
   add_render_command(app);
   add_bench_command(app);
   add_movie_command(app);

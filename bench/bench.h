@@ -23,6 +23,7 @@ struct Case {
 
 // Each area appends its cases.
 void add_sim_cases(std::vector<Case>& cases);
+void add_run_cases(std::vector<Case>& cases);
 void add_render_cases(std::vector<Case>& cases);
 void add_movie_cases(std::vector<Case>& cases);
 void add_figures_cases(std::vector<Case>& cases);

@@ -1,8 +1,10 @@
 #include "sim/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <string>
 
 #include "sim/error.h"
@@ -16,12 +18,22 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view text)
   tmp += ".tmp." + std::to_string(::getpid());
   std::error_code ec;
   {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (f) f.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (f) f.close();
-    if (!f) {
+    // POSIX calls rather than a stream, for the OS reason of a failure (a full disk).
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const char* p = text.data();
+    std::size_t left = text.size();
+    bool ok = fd >= 0;
+    while (ok && left > 0) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      ok = n > 0;
+      if (ok) p += n, left -= static_cast<std::size_t>(n);
+    }
+    const std::string why = std::strerror(errno);
+    if (fd >= 0 && ::close(fd) != 0) ok = false;
+    if (!ok) {
       fs::remove(tmp, ec);
-      throw UserError("cannot write '" + path.string() + "'");
+      throw UserError("cannot write '" + path.string() + "': " + why);
     }
   }
   fs::rename(tmp, path, ec);

@@ -1,6 +1,11 @@
 #include "sim/config.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 
@@ -41,9 +46,21 @@ void validate(const PhysicsConfig& c) {
   if (c.dim < 1 || c.dim > 3) fail("--dim " + std::to_string(c.dim) + ": must be 1, 2 or 3");
   if (c.particles < 2)
     fail("--particles " + std::to_string(c.particles) + ": need at least 2 particles");
+  // Particle indices are 32-bit in the engine.
+  if (c.particles >= INT32_MAX)
+    fail("--particles " + std::to_string(c.particles) + ": at most " +
+         std::to_string(INT32_MAX - 1) + " (and this many would need about " +
+         num(estimated_bytes(c) / 1e9) + " GB of memory)");
+  // Run files are TOML, whose integers are signed 64-bit: a larger seed could not be read back.
+  if (c.seed > static_cast<std::uint64_t>(INT64_MAX))
+    fail("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
+         "]");
+  if (c.realisation > static_cast<std::uint64_t>(INT64_MAX))
+    fail("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
+         std::to_string(INT64_MAX) + "]");
   if (c.lattice != 0.0) {
     if (c.dim != 1) fail("--lattice: a lattice start exists only in 1D (--dim 1)");
-    if (!(c.lattice > 1.0))
+    if (!(c.lattice > 1.0) || !std::isfinite(c.lattice))
       fail("--lattice " + num(c.lattice) + ": spacing must exceed the diameter 1");
   } else {
     if (!(c.density > 0)) fail("--density " + num(c.density) + ": must be positive");
@@ -53,7 +70,8 @@ void validate(const PhysicsConfig& c) {
   }
   if (!(c.restitution >= 0 && c.restitution <= 1))
     fail("--restitution " + num(c.restitution) + ": must lie in [0, 1]");
-  if (!(c.cutoff >= 0)) fail("--cutoff " + num(c.cutoff) + ": must be >= 0");
+  if (!(c.cutoff >= 0) || !std::isfinite(c.cutoff))
+    fail("--cutoff " + num(c.cutoff) + ": must be finite and >= 0");
   if (!(c.speed > 0) || !std::isfinite(c.speed))
     fail("--speed " + num(c.speed) + ": must be positive");
   if (!(c.t_max > 0) || !std::isfinite(c.t_max))
@@ -68,6 +86,46 @@ void validate(const PhysicsConfig& c) {
   if (c.dim > 1 && c.box() > 32767)
     fail("--density " + num(c.density) + ": box side " + num(c.box()) +
          " is over 32767 diameters in " + std::to_string(c.dim) + "D; use a higher density");
+  const double n = static_cast<double>(c.particles);
+  const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
+  const double limit = std::max(kMinCellLimit, kCellsPerParticle * n);
+  if (cells > limit) {
+    const std::string what = std::to_string(c.particles) + " particles in a box of side " +
+                             num(c.box()) + " need " + num(cells) + " neighbour cells (" +
+                             num(std::ceil(cells * 8 / 1e9)) + " GB), over the limit of " +
+                             num(limit);
+    if (c.lattice > 0)
+      fail("--lattice " + num(c.lattice) + ": " + what + "; use --lattice " +
+           num(std::floor(limit / n)) + " or less");
+    fail("--density " + num(c.density) + ": " + what + "; use --density " +
+         num(n / limit * 1.0001) + " or more");
+  }
+  check_memory(c, 0);
+}
+
+double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
+  const double d = c.dim;
+  // The engine's records (sim/engine.h) and queue entry, the initial state with the copies that
+  // sorting it makes, and a snapshot with its extended-XYZ text.
+  const double engine = 64 + 32 + 16 + 8 + 4 + 4 * d + 8 + 4 + 8;
+  const double initial = 32 * d + 48;
+  const double snapshot = 65 + 140;
+  const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
+  return static_cast<double>(c.particles) * (engine + initial + snapshot * snapshot_copies) +
+         8 * cells;
+}
+
+void check_memory(const PhysicsConfig& c, int snapshot_copies) {
+  const double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  const double need = estimated_bytes(c, snapshot_copies);
+  if (have > 0 && need > have) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "--particles %lld: needs about %.3g GB of memory, this machine has %.3g GB",
+                  static_cast<long long>(c.particles), need / 1e9, have / 1e9);
+    throw UserError(text);
+  }
 }
 
 const char* to_string(Initial i) {
@@ -79,7 +137,6 @@ const char* to_string(KickSite k) {
 
 std::string to_toml(const PhysicsConfig& c) {
   std::ostringstream o;
-  o << "# grainshock run configuration; rerun with: grainshock run --config run.toml\n";
   o << "dim = " << c.dim << "\n";
   o << "particles = " << c.particles << "\n";
   o << "density = " << num(c.density) << "\n";

@@ -35,11 +35,23 @@ struct PhysicsConfig {
 // Throws UserError naming the offending input (flag name) if the configuration is impossible.
 void validate(const PhysicsConfig& c);
 
+// The neighbour grid has at most this many cells per particle (or kMinCellLimit, whichever is
+// more): a very dilute gas would otherwise spend gigabytes on empty cells.
+inline constexpr double kCellsPerParticle = 16;
+inline constexpr double kMinCellLimit = 16777216;  // 2^24 cells, 64 MB of list heads
+
+// Bytes a run of `c` needs at its peak (initial state, engine, and `snapshot_copies` snapshots
+// with their text), an estimate to refuse a run before anything is allocated.
+double estimated_bytes(const PhysicsConfig& c, int snapshot_copies = 1);
+// Throws UserError if estimated_bytes() exceeds this machine's memory, saying how much each is.
+void check_memory(const PhysicsConfig& c, int snapshot_copies = 1);
+
 // Highest number density random sequential addition reaches in reasonable time (below the RSA
 // jamming limits: packing 0.547 in 2D, Feder 1980; 0.384 in 3D, Talbot et al. 1991).
 double max_rsa_density(int dim);
 
-// TOML text with one key per command-line flag, readable back with --config.
+// TOML lines, one key per physics flag, readable back with --config; the files that hold them
+// (run.toml, movie.toml, ensemble.toml) add their own keys and a comment saying how to rerun.
 std::string to_toml(const PhysicsConfig& c);
 
 const char* to_string(Initial i);

@@ -47,6 +47,51 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   for (std::int32_t i : moved_) predict(i);
 }
 
+template <int D>
+void Engine<D>::save(CheckpointWriter& out) const {
+  out.string(to_toml(config_));
+  out.value(now_);
+  out.value(stats_);
+  out.vector(kin_);
+  out.vector(tag_);
+  out.vector(image_);
+  out.vector(head_);
+  out.vector(next_);
+  out.vector(prev_);
+  out.vector(pred_);
+  queue_.save(out);
+  out.vector(first_collision_);
+  out.vector(moved_);
+  out.vector(cluster_lo_);
+  out.vector(cluster_hi_);
+}
+
+template <int D>
+Engine<D>::Engine(const PhysicsConfig& c, CheckpointReader& in)
+    : config_(c), grid_(c.box()), queue_(static_cast<std::size_t>(c.particles)) {
+  if (in.string() != to_toml(c))
+    throw UserError("the checkpoint is of a run with other physics than its run.toml");
+  const auto n = static_cast<std::size_t>(c.particles);
+  in.value(now_);
+  in.value(stats_);
+  in.vector(kin_);
+  in.vector(tag_);
+  in.vector(image_);
+  in.vector(head_);
+  in.vector(next_);
+  in.vector(prev_);
+  in.vector(pred_);
+  queue_.load(in);
+  in.vector(first_collision_);
+  in.vector(moved_);
+  in.vector(cluster_lo_);
+  in.vector(cluster_hi_);
+  in.expect(kin_.size() == n && tag_.size() == n && image_.size() == n &&
+            head_.size() == grid_.cell_count() && next_.size() == n && prev_.size() == n &&
+            pred_.size() == n && first_collision_.size() == n && moved_.size() <= n);
+  moved_.reserve(n);  // as the constructor: mark_moving() never reallocates
+}
+
 namespace {
 
 // Interleaves the bits of the cell coordinates (Morton order): cells close in space get close
@@ -509,6 +554,21 @@ double Engine<D>::max_overlap_now() const {
     });
   }
   return deepest;
+}
+
+std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, CheckpointReader& in) {
+  validate(c);
+  if (in.identity().dim != c.dim ||
+      in.identity().particles != static_cast<std::uint64_t>(c.particles))
+    throw UserError("the checkpoint is of a run with other physics than its run.toml");
+  switch (c.dim) {
+    case 1:
+      return std::make_unique<Engine<1>>(c, in);
+    case 2:
+      return std::make_unique<Engine<2>>(c, in);
+    default:
+      return std::make_unique<Engine<3>>(c, in);
+  }
 }
 
 std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sim/cell_grid.h"
+#include "sim/checkpoint.h"
 #include "sim/collision.h"
 #include "sim/config.h"
 #include "sim/event_queue.h"
@@ -76,14 +77,20 @@ class Simulation {
   virtual const EngineStats& stats() const = 0;
   // Deepest overlap (1 - distance) of any pair now, by a scan of all cells; 0 if none.
   virtual double max_overlap_now() const = 0;
+  // The whole state, derived structures included (cell lists, queue, predictions), so that a
+  // simulation loaded from it makes the same events in the same order, ties included.
+  virtual void save(CheckpointWriter& out) const = 0;
 };
 
 std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c);
+// A simulation of `c` in the state save() wrote; refuses (UserError) one of other physics.
+std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, CheckpointReader& in);
 
 template <int D>
 class Engine final : public Simulation {
  public:
   Engine(const PhysicsConfig& c, InitialState<D> init);
+  Engine(const PhysicsConfig& c, CheckpointReader& in);
 
   int dim() const override { return D; }
   const PhysicsConfig& config() const override { return config_; }
@@ -95,6 +102,7 @@ class Engine final : public Simulation {
   using Simulation::snapshot;
   const EngineStats& stats() const override { return stats_; }
   double max_overlap_now() const override;
+  void save(CheckpointWriter& out) const override;
 
   // Per-particle state at the current time (unwrapped position).
   Vec<D> position(std::int32_t i) const;

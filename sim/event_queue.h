@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/checkpoint.h"
 #include "sim/error.h"
 #include "sim/huge_pages.h"
 
@@ -128,6 +129,50 @@ class EventQueue {
   void prefetch_bucket(double t) const {
     const std::int64_t b = bucket_of(t);
     if (b < year_end_) __builtin_prefetch(&head_[static_cast<std::size_t>(b) & mask_]);
+  }
+
+  // Every member, so that a loaded queue breaks ties and rebuilds its calendar exactly as the
+  // saved one would have.
+  void save(CheckpointWriter& out) const {
+    out.vector(entry_);
+    out.vector(head_);
+    out.value(overflow_);
+    out.value(mask_);
+    out.value(width_);
+    out.value(inv_width_);
+    out.value(cur_);
+    out.value(year_end_);
+    out.value(size_);
+    out.value(calendar_count_);
+    out.value(overflow_count_);
+    out.value(top_);
+    out.value(top_known_time_);
+    out.value(floor_);
+    out.value(finds_);
+    out.value(next_check_);
+  }
+  void load(CheckpointReader& in) {
+    const std::size_t n = entry_.size();
+    in.vector(entry_);
+    in.vector(head_);
+    in.expect(entry_.size() == n && std::has_single_bit(head_.size()));
+    head_.reserve(std::bit_ceil(std::max(2 * n, kMinBuckets)));  // as the constructor: no growth
+    in.value(overflow_);
+    in.value(mask_);
+    in.value(width_);
+    in.value(inv_width_);
+    in.value(cur_);
+    in.value(year_end_);
+    in.value(size_);
+    in.value(calendar_count_);
+    in.value(overflow_count_);
+    in.value(top_);
+    in.value(top_known_time_);
+    in.value(floor_);
+    in.value(finds_);
+    in.value(next_check_);
+    in.expect(mask_ + 1 == head_.size() && size_ <= n &&
+              calendar_count_ + overflow_count_ == size_);
   }
 
   void remove(std::int32_t id) {

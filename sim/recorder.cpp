@@ -18,8 +18,9 @@ Recorder::Recorder(const PhysicsConfig& c) : config_(c) {
   }
 }
 
-std::vector<double> Recorder::row(const Simulation& sim) {
+std::vector<double> Recorder::row(const Simulation& sim, Sample* sample) {
   const Sample s = sim.sample();
+  if (sample) *sample = s;
   std::vector<double> r = {s.t,
                            config_.paper_time(s.t),
                            static_cast<double>(s.active),
@@ -48,6 +49,18 @@ std::vector<double> Recorder::row(const Simulation& sim) {
   last_collisions_ = s.collisions;
   GS_CHECK(r.size() == columns_.size());
   return r;
+}
+
+void Recorder::save(CheckpointWriter& out) const {
+  out.value(last_t_);
+  out.value(last_virial_);
+  out.value(last_collisions_);
+}
+
+void Recorder::load(CheckpointReader& in) {
+  in.value(last_t_);
+  in.value(last_virial_);
+  in.value(last_collisions_);
 }
 
 std::vector<double> log_times(double t_min, double t_max, int per_decade) {

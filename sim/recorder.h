@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/checkpoint.h"
 #include "sim/config.h"
 #include "sim/engine.h"
 
@@ -16,7 +17,12 @@ class Recorder {
  public:
   explicit Recorder(const PhysicsConfig& c);
   const std::vector<std::string>& columns() const { return columns_; }
-  std::vector<double> row(const Simulation& sim);
+  // The row of the simulation's state now, from its sample() (also handed back in `sample`, so
+  // that a caller wanting more of it need not compute it again).
+  std::vector<double> row(const Simulation& sim, Sample* sample = nullptr);
+  // What the next row depends on beside the simulation: the previous row's time and sums.
+  void save(CheckpointWriter& out) const;
+  void load(CheckpointReader& in);
 
  private:
   PhysicsConfig config_;

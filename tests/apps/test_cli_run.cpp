@@ -29,9 +29,15 @@ TEST(CliRun, WritesTheRunFolder) {
       csv.substr(0, csv.find('\n')),
       "t,t_paper,active,energy,radius_rms,speed_rms,anisotropy,collisions,events,overlaps,px,py");
   const std::string summary = read_file(dir / "summary.json");
-  for (const char* key : {"\"version\"", "\"seed\"", "\"setup_seconds\"", "\"run_seconds\"",
-                          "\"events\"", "\"collisions\"", "\"overlaps\""})
+  for (const char* key :
+       {"\"version\"", "\"seed\"", "\"events\"", "\"collisions\"", "\"overlaps\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
+  // Wall times are apart, so that summary.json is the same on every run of the same job.
+  EXPECT_EQ(summary.find("seconds"), std::string::npos);
+  const std::string timing = read_file(dir / "timing.json");
+  for (const char* key :
+       {"\"setup_seconds\"", "\"run_seconds\"", "\"snapshot_seconds\"", "\"checkpoint_seconds\""})
+    EXPECT_NE(timing.find(key), std::string::npos) << key;
   const Snapshot s = read_xyz((dir / "snapshots/t_300.xyz").string());
   EXPECT_EQ(s.size(), 3000u);
   EXPECT_EQ(s.info.dim, 2);
@@ -129,6 +135,15 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --particles 100 --t-max 1", "not empty"},
       {"run --png --width 0", "image size 0x1080"},
       {"run --snapshot-times 5,1e9", "--snapshot-times"},
+      // Sizes are checked against memory and the cell-grid limits before anything is made.
+      {"run --dim 3 --particles 1000000000000", "GB of memory"},
+      {"run --sample-every 1e-7", "use --sample-every 0.01 or more"},
+      {"run --particles 2000 --density 2e-6", "neighbour cells"},
+      {"run --dim 1 --particles 1000 --density 1e-7", "use --density"},
+      {"run --dim 1 --particles 1000 --lattice 1e9", "use --lattice"},
+      {"run --seed -1", "--seed"},
+      {"run --cutoff inf", "--cutoff"},
+      {"run --lattice inf --dim 1", "--lattice"},
   };
   for (const auto& [args, names] : cases) {
     const auto r = grainshock(args + out);

@@ -1,0 +1,110 @@
+// Benchmarks of `grainshock run` around the engine (issue 20): the run loop with its samples,
+// timeseries.csv and snapshots, and its checkpoints.
+#include <unistd.h>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "bench/bench.h"
+#include "sim/checkpoint.h"
+#include "sim/run_loop.h"
+
+namespace gs::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("grainshock_bench_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+RunPlan kick_plan(std::int64_t n) {
+  RunPlan plan;  // the defaults of `grainshock run`: 20 samples per decade, a final snapshot
+  plan.physics.dim = 3;
+  plan.physics.particles = n;
+  plan.physics.restitution = 0.5;
+  plan.physics.t_max = 2e4;
+  return plan;
+}
+
+// The run loop of `grainshock run` (sim/run_loop.h) at N = 2e5 and 2e6: 3D, r = 0.5, to
+// t = 2e4, where both blasts are still inside their boxes (sim/kick3d_scaling). Particles at
+// rest must cost nothing in the loop either, so the cost per collision should barely grow with
+// N. Set-up (the initial state and first checkpoint) is left out, and so is the final snapshot
+// (all N particles, timed on its own). The two runs take turns in 20 steps of time, so that both
+// meet the same machine (a figure drifts by up to 10% from one minute to the next).
+std::vector<Figure> run_scaling() {
+  constexpr std::int64_t kSizes[2] = {200000, 2000000};
+  std::unique_ptr<RunLoop> loops[2];
+  fs::path dirs[2];
+  double cpu[2] = {0, 0}, collisions[2] = {0, 0}, last[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    dirs[k] = scratch("run" + std::to_string(k));
+    loops[k] = std::make_unique<RunLoop>(kick_plan(kSizes[k]), dirs[k], "bench");
+    loops[k]->checkpoint_every = 0;
+  }
+  constexpr int kSteps = 20;
+  for (int step = 1; step < kSteps; ++step)
+    for (int k = 0; k < 2; ++k) {
+      const double c0 = cpu_seconds();
+      loops[k]->run(2e4 * step / kSteps);
+      cpu[k] += cpu_seconds() - c0;
+      collisions[k] = static_cast<double>(loops[k]->simulation().stats().collisions);
+    }
+  for (int k = 0; k < 2; ++k) {  // the last step holds the final snapshot
+    const double c0 = cpu_seconds();
+    loops[k]->run();
+    last[k] = cpu_seconds() - c0;
+    fs::remove_all(dirs[k]);
+  }
+  const double small = 1e6 * cpu[0] / collisions[0], large = 1e6 * cpu[1] / collisions[1];
+  return {{"cpu_microseconds_per_collision_2e5", small, "us", ""},
+          {"cpu_microseconds_per_collision_2e6", large, "us", ""},
+          {"collisions_2e6", collisions[1], "", ""},
+          {"cost_per_collision_ratio", large / small, "", "<= 1.2"},
+          {"last_step_with_final_snapshot_cpu_seconds_2e6", last[1], "s", ""}};
+}
+
+// A checkpoint of a 2e6-sphere 3D kick at t = 2e4 (r = 0.5): written and read back.
+std::vector<Figure> checkpoint_2e6() {
+  const fs::path dir = scratch("checkpoint");
+  RunPlan plan = kick_plan(2000000);
+  RunLoop loop(plan, dir, "bench");
+  loop.checkpoint_every = 0;
+  loop.run(plan.physics.t_max * 0.999);
+  const double w0 = wall_seconds();
+  loop.write_checkpoint();
+  const double write = wall_seconds() - w0;
+  const auto bytes = static_cast<double>(fs::file_size(RunLoop::checkpoint_path(dir)));
+  const double r0 = wall_seconds();
+  const auto resumed = RunLoop::resume(plan, dir, "bench");
+  const double read = wall_seconds() - r0;
+  const double same = resumed->simulation().stats().events == loop.simulation().stats().events;
+  fs::remove_all(dir);
+  return {{"write_seconds", write, "s", "< 1 s"},
+          {"read_seconds", read, "s", "< 1 s"},
+          {"megabytes", bytes / 1e6, "MB", ""},
+          // One checkpoint per minute costs its write time once a minute.
+          {"share_of_run_time_every_60_s", write / 60, "", "< 0.02"},
+          {"read_back_same_state", same, "", "1"}};
+}
+
+}  // namespace
+
+void add_run_cases(std::vector<Case>& cases) {
+  cases.push_back(
+      {"run/kick3d_2e5_vs_2e6",
+       "the run loop of `grainshock run`, 3D kick, r = 0.5, to t = 2e4, N = 2e5 and 2e6 "
+       "in turns: cost per collision ratio",
+       true, run_scaling});
+  cases.push_back({"run/checkpoint_2e6",
+                   "checkpoint of a 2e6-sphere 3D kick at t = 2e4: write, read", true,
+                   checkpoint_2e6});
+}
+
+}  // namespace gs::bench

@@ -1,0 +1,108 @@
+#pragma once
+// Checkpoint files: the exact state of a run, binary, so that a resumed run continues the very
+// same history. A fixed header says what wrote the file (magic, format version, program version,
+// instruction set, dimension, particles) and holds the payload's length and checksum, so that a
+// file from another build, a truncated one and a corrupt one are each told apart and refused
+// before anything is read into an engine. The payload is whatever the writers put, read back in
+// the same order.
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace gs {
+
+// The instruction set this build was compiled for. Histories are the same on every x86-64 build
+// (FMA stays off), but the packed engine records follow Eigen's alignment for it.
+const char* instruction_set();
+
+struct CheckpointIdentity {
+  int dim = 0;
+  std::uint64_t particles = 0;
+};
+
+// Streams a checkpoint into `path` through a temporary beside it; commit() renames an existing
+// `path` to `previous` first, so that a kill at any moment leaves one whole checkpoint at least.
+class CheckpointWriter {
+ public:
+  CheckpointWriter(const std::filesystem::path& path, const std::filesystem::path& previous,
+                   const CheckpointIdentity& id);
+  ~CheckpointWriter();
+  CheckpointWriter(const CheckpointWriter&) = delete;
+  CheckpointWriter& operator=(const CheckpointWriter&) = delete;
+
+  void bytes(const void* p, std::size_t n);
+  // T is plain data: numbers, or structs of them and of fixed-size Eigen vectors.
+  template <class T>
+  void value(const T& v) {
+    static_assert(!std::is_pointer_v<T>);
+    bytes(&v, sizeof v);
+  }
+  template <class T, class A>
+  void vector(const std::vector<T, A>& v) {
+    value(static_cast<std::uint64_t>(v.size()));
+    bytes(v.data(), v.size() * sizeof(T));
+  }
+  void string(const std::string& s);
+  // Writes length and checksum, syncs, and puts the file in place. Throws UserError naming the
+  // file and the OS reason; then nothing replaces the earlier checkpoint.
+  void commit();
+  std::uint64_t size() const { return written_; }
+
+ private:
+  void flush();
+  void write_all(const void* p, std::size_t n);
+  std::filesystem::path path_, previous_, tmp_;
+  int fd_ = -1;
+  std::vector<unsigned char> buffer_;
+  std::uint64_t written_ = 0, hash_ = 0;
+};
+
+// Reads a whole checkpoint, refusing (UserError, one line naming the file) a file that is not
+// one, from another format, program version or instruction set, truncated, or corrupt.
+class CheckpointReader {
+ public:
+  explicit CheckpointReader(const std::filesystem::path& path);
+  ~CheckpointReader();
+  CheckpointReader(const CheckpointReader&) = delete;
+  CheckpointReader& operator=(const CheckpointReader&) = delete;
+
+  const CheckpointIdentity& identity() const { return id_; }
+  void bytes(void* p, std::size_t n);
+  template <class T>
+  T value() {
+    T v;
+    bytes(&v, sizeof v);
+    return v;
+  }
+  template <class T>
+  void value(T& v) {
+    bytes(&v, sizeof v);
+  }
+  template <class T, class A>
+  void vector(std::vector<T, A>& v) {
+    const auto n = value<std::uint64_t>();
+    if (n > remaining() / sizeof(T)) corrupt();
+    v.resize(n);
+    bytes(v.data(), n * sizeof(T));
+  }
+  std::string string();
+  // For loaders: refuses the file (as corrupt) unless `ok`.
+  void expect(bool ok) const {
+    if (!ok) corrupt();
+  }
+  // Throws unless the payload has been read to its end exactly.
+  void finish() const;
+
+ private:
+  std::size_t remaining() const { return size_ - pos_; }
+  [[noreturn]] void corrupt() const;
+  std::filesystem::path path_;
+  CheckpointIdentity id_;
+  const unsigned char* data_ = nullptr;
+  std::size_t size_ = 0, pos_ = 0, mapped_ = 0;
+};
+
+}  // namespace gs
