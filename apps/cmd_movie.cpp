@@ -1,5 +1,6 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
-// DIR/movie.mp4 beside run.toml (see apps/front_movie.h).
+// DIR/movie.mp4 beside run.toml, or, given snapshot files, draws them in order of their time
+// into DIR/movie.mp4 (see apps/front_movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include "apps/exit_code.h"
 #include "apps/front_movie.h"
 #include "sim/config.h"
+#include "sim/error.h"
 #include "sim/stop.h"
 
 namespace gs::app {
@@ -19,10 +21,14 @@ void add_movie_command(CLI::App& app) {
     std::string out = "grainshock-movie";
     bool force = false;
     FrontMovieOptions movie;
+    std::vector<std::string> files;
   };
   auto opt = std::make_shared<Options>();
-  auto* sub =
-      app.add_subcommand("movie", "Simulate one realisation and stream it into DIR/movie.mp4");
+  auto* sub = app.add_subcommand(
+      "movie",
+      "Simulate one realisation and stream it into DIR/movie.mp4, or draw stored snapshots");
+  sub->add_option("snapshots", opt->files,
+                  "Snapshot files to draw instead of simulating, in order of their Time");
   add_config_option(*sub);
   add_physics_options(*sub, opt->physics);
   add_output_options(*sub, opt->out, opt->force, opt->movie.quiet);
@@ -69,7 +75,12 @@ void add_movie_command(CLI::App& app) {
   sub->add_option("--slab", opt->movie.slab,
                   "3D: keep a slab this thick through the centre, facing the camera (0: all)")
       ->capture_default_str();
+  sub->add_flag("--clip", opt->movie.clip,
+                "3D: cut away the half nearer than the plane through the front's centre");
   sub->add_option("--azimuth", opt->movie.azimuth, "3D: camera azimuth about z, degrees")
+      ->capture_default_str();
+  sub->add_option("--orbit", opt->movie.orbit,
+                  "3D: total azimuth the camera turns over the movie, degrees")
       ->capture_default_str();
   sub->add_option("--elevation", opt->movie.elevation, "3D: camera elevation, degrees")
       ->capture_default_str();
@@ -77,7 +88,27 @@ void add_movie_command(CLI::App& app) {
                 "Also write every frame as DIR/frames/*.png");
   sub->add_option("--gl", opt->movie.backend, "OpenGL context: auto, osmesa or egl")
       ->capture_default_str();
-  sub->callback([opt] {
+  sub->callback([opt, sub] {
+    if (!opt->files.empty()) {
+      // Flags that shape a simulation mean nothing to stored snapshots.
+      for (const CLI::Option* option : sub->get_options()) {
+        const std::string name = option->get_name();
+        const bool physics = name == "--dim" || name == "--particles" || name == "--density" ||
+                             name == "--restitution" || name == "--cutoff" || name == "--speed" ||
+                             name == "--seed" || name == "--realisation" || name == "--t-max" ||
+                             name == "--initial" || name == "--temperature" ||
+                             name == "--lattice" || name == "--kick-site" || name == "--frames" ||
+                             name == "--frame-spacing" || name == "--t-start";
+        if (physics && option->count() > 0)
+          throw UserError(name + " sets up a simulation; a movie of stored snapshots takes none");
+      }
+      // Every file is read (and checked) before the folder is made.
+      StoredMovie m = prepare_stored_movie(opt->files, opt->movie);
+      const auto dir = prepare_output_dir(opt->out, opt->force);
+      const FrontMovieResult r = write_stored_movie(m, dir);
+      if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
+      return;
+    }
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);

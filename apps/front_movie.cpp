@@ -1,15 +1,21 @@
-// A colour must mean one speed throughout and a following camera must never lose the front, so
-// both need the whole run ahead of time. Runs are reproducible from (config, seed), so a first,
+// A colour must mean one value throughout and a following camera must never lose the front, so
+// both need every frame ahead of time. Runs are reproducible from (config, seed), so a first,
 // picture-less pass over the same trajectory finds the colour range and the camera path; the
 // second pass renders. The first pass is skipped when neither is needed (a fixed range and a
-// fixed camera).
+// fixed camera). Stored snapshots take the same two passes over the files (the first also puts
+// them in order of time and checks them), and the same frame loop.
 #include "apps/front_movie.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <functional>
+#include <mutex>
 #include <numbers>
+#include <optional>
+#include <thread>
 
 #include "apps/progress.h"
 #include "render/camera.h"
@@ -20,6 +26,7 @@
 #include "sim/error.h"
 #include "sim/format.h"
 #include "sim/stop.h"
+#include "sim/xyz.h"
 
 namespace gs::app {
 namespace {
@@ -83,6 +90,9 @@ bool for_each_frame(Simulation& sim, const std::vector<double>& times, Progress&
 // What the first pass learns about one frame: the colour range of its particles, where the
 // front is (unwrapped), and the box the renderer's fitted framing will use.
 struct FrameScan {
+  double time = 0;
+  int dim = 2;
+  double box = 0;
   bool any_active = false;
   std::pair<double, double> range{0, 1};
   Eigen::AlignedBox3d front;  // active particles, else the moving ones (the kicked particle)
@@ -92,6 +102,9 @@ struct FrameScan {
 
 FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   FrameScan f;
+  f.time = s.info.time;
+  f.dim = s.info.dim;
+  f.box = s.info.box;
   f.any_active = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
   auto in_front = [&](std::size_t i) {
     return f.any_active ? s.active[i] != 0 : s.has_velocity() && s.velocity[i].squaredNorm() > 0;
@@ -185,24 +198,24 @@ void aim(render::View& view, const Shot& shot, const Snapshot& s, const FrameSca
 
 // Everything the options decide, checked (UserError naming the flag) before anything is made.
 struct Plan {
-  std::vector<double> times;
   render::Style style;
   render::View view;
   bool follow = true;
   render::Backend backend = render::Backend::Auto;
+  bool field_auto = false;  // colour_by "auto": decided by the first frame (stored snapshots)
+  bool need_range = false;  // the colour range spans every frame: the first pass finds it
 };
 
-Plan make_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
+// The flags that do not depend on where the frames come from.
+Plan make_plan(const FrontMovieOptions& o) {
   Plan p;
-  p.times = frame_times(physics, o);
   render::Style& style = p.style;
   render::View& view = p.view;
   style.colormap = o.colormap;
-  if (o.colour_by == "auto")
-    style.field =
-        physics.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;
-  else
-    style.field = render::parse_field(o.colour_by);
+  p.field_auto = o.colour_by == "auto";
+  // An unknown field name waits for the first stored frame, whose fields the message lists.
+  for (render::Field f : render::all_fields())
+    if (o.colour_by == render::field_name(f)) style.field = f;
   style.background = render::parse_background(o.background);
   style.scale = render::parse_scale(o.scale, style.field);
   if (!o.range.empty()) style.range = std::pair{o.range[0], o.range[1]};
@@ -216,8 +229,10 @@ Plan make_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   view.width = o.movie.width;
   view.height = o.movie.height;
   view.slab = o.slab;
+  view.clip = o.clip;
   view.azimuth = o.azimuth;
   view.elevation = o.elevation;
+  if (!std::isfinite(o.orbit)) throw UserError("--orbit must be a finite number of degrees");
   const bool follow = p.follow = o.camera == "follow";
   if (!follow && o.camera != "fixed")
     throw UserError("unknown --camera '" + o.camera + "' (use follow or fixed)");
@@ -228,79 +243,186 @@ Plan make_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   return p;
 }
 
-}  // namespace
-
-void check_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o) {
-  make_plan(physics, o);
+void check_orbit(int dim, const FrontMovieOptions& o, const std::string& what) {
+  if (o.orbit != 0 && dim != 3)
+    throw UserError("--orbit turns the camera about a 3D scene; " + what + " is " +
+                    std::to_string(dim) + "D");
 }
 
-FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
-                                   const std::filesystem::path& dir) {
-  Plan plan = make_plan(physics, o);
-  const std::vector<double>& times = plan.times;
-  render::Style& style = plan.style;
-  render::View& view = plan.view;
-  const bool follow = plan.follow;
-  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
-  // Opened now so that an unwritable folder is reported before any work.
-  render::MovieWriter movie(dir / "movie.mp4", o.movie);
-  render::Renderer renderer(plan.backend);
-  install_stop_handlers();
+// Once the field and dimension are known: does the colour range need every frame?
+void settle_range(Plan& p, int dim) {
+  p.need_range =
+      !p.style.range && !p.style.range_per_frame && !render::default_range(p.style.field, dim);
+}
 
+// The frames of a movie, visited in order, as often as the passes need them.
+class Frames {
+ public:
+  virtual ~Frames() = default;
+  virtual std::size_t size() const = 0;
+  // Calls visit(k, snapshot) for k = 0, 1, ...; false if a stop request ended the pass.
+  virtual bool each(Progress& progress, const char* pass,
+                    const std::function<void(std::size_t, const Snapshot&)>& visit) = 0;
+};
+
+// A running simulation, replayed from the start on each pass.
+class LiveFrames final : public Frames {
+ public:
+  LiveFrames(const PhysicsConfig& physics, std::vector<double> times)
+      : physics_(physics), times_(std::move(times)) {}
+  std::size_t size() const override { return times_.size(); }
+  bool each(Progress& progress, const char* pass,
+            const std::function<void(std::size_t, const Snapshot&)>& visit) override {
+    auto sim = make_simulation(physics_);
+    return for_each_frame(*sim, times_, progress, pass, [&](std::size_t k) {
+      sim->snapshot(snap_);
+      visit(k, snap_);
+    });
+  }
+
+ private:
+  PhysicsConfig physics_;
+  std::vector<double> times_;
+  Snapshot snap_;  // reused frame after frame
+};
+
+// Stored snapshot files in a chosen order. A second thread reads frame k + 1 while frame k is
+// drawn; it waits for the slot to empty first, so at most two frames are in memory at once.
+class StoredFrames final : public Frames {
+ public:
+  explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {
+    for (std::size_t k = 0; k < paths_.size(); ++k) order_.push_back(k);
+  }
+  std::size_t size() const override { return order_.size(); }
+  const std::string& path(std::size_t k) const { return paths_[order_[k]]; }
+  // Reorders the frames: frame k becomes the one that was frame `order[k]`.
+  void reorder(const std::vector<std::size_t>& order) {
+    std::vector<std::size_t> o;
+    for (std::size_t k : order) o.push_back(order_[k]);
+    order_ = std::move(o);
+  }
+  bool each(Progress& progress, const char* pass,
+            const std::function<void(std::size_t, const Snapshot&)>& visit) override {
+    std::mutex m;
+    std::condition_variable cv;
+    std::optional<Snapshot> slot;
+    std::exception_ptr error;
+    bool quit = false;
+    std::thread reader([&] {
+      for (std::size_t k = 0; k < order_.size(); ++k) {
+        {
+          std::unique_lock lock(m);
+          cv.wait(lock, [&] { return !slot || quit; });
+          if (quit) return;
+        }
+        try {
+          Snapshot s = read_xyz(path(k));
+          std::lock_guard lock(m);
+          slot = std::move(s);
+        } catch (...) {
+          std::lock_guard lock(m);
+          error = std::current_exception();
+          cv.notify_all();
+          return;
+        }
+        cv.notify_all();
+      }
+    });
+    struct Join {  // the reader stops and is joined however this pass ends
+      std::thread& t;
+      std::mutex& m;
+      std::condition_variable& cv;
+      bool& quit;
+      ~Join() {
+        {
+          std::lock_guard lock(m);
+          quit = true;
+        }
+        cv.notify_all();
+        t.join();
+      }
+    } join{reader, m, cv, quit};
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+      Snapshot s;
+      {
+        std::unique_lock lock(m);
+        cv.wait(lock, [&] { return slot || error; });
+        if (!slot) std::rethrow_exception(error);
+        s = std::move(*slot);
+        slot.reset();
+      }
+      cv.notify_all();
+      visit(k, s);
+      char what[160];
+      std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g", pass, k + 1, order_.size(),
+                    s.info.time);
+      progress.update(double(k + 1) / order_.size(), what);
+      if (stop_requested()) return false;
+    }
+    return true;
+  }
+
+ private:
+  std::vector<std::string> paths_;
+  std::vector<std::size_t> order_;
+};
+
+// The first pass: what every frame needs of all the others (range, camera path).
+struct Prepared {
+  Plan plan;
   std::vector<FrameScan> scans;
   std::vector<Shot> shots;
-  Snapshot snap;  // reused frame after frame
   bool stopped = false;
-  // The colour range over all frames needs the first pass only for a field without a fixed one.
-  const bool need_range =
-      !style.range && !style.range_per_frame && !render::default_range(style.field, physics.dim);
-  if (need_range || follow) {
-    auto sim = make_simulation(physics);
-    Progress progress(o.quiet);
-    scans.reserve(times.size());
-    stopped =
-        !for_each_frame(*sim, times, progress, "pass 1 of 2 (range, camera)", [&](std::size_t) {
-          sim->snapshot(snap);
-          scans.push_back(scan(snap, style, need_range));
-        });
-    progress.done();
-    if (!stopped) {
-      if (need_range) style.range = fixed_range(scans, style.scale);
-      if (follow)
-        shots = camera_path(scans, physics.dim, double(view.width) / view.height, view.margin,
-                            std::max(1, static_cast<int>(o.movie.fps / 2)));
-    }
-  }
+};
 
-  double sim_s = 0, render_s = 0, encode_s = 0, png_s = 0;
+void finish_first_pass(Prepared& p, int dim, double fps) {
+  if (p.stopped) return;
+  if (p.plan.need_range) p.plan.style.range = fixed_range(p.scans, p.plan.style.scale);
+  if (p.plan.follow)
+    p.shots = camera_path(p.scans, dim, double(p.plan.view.width) / p.plan.view.height,
+                          p.plan.view.margin, std::max(1, static_cast<int>(fps / 2)));
+}
+
+// The second pass, the one frame loop of every movie: aims the camera, renders, encodes.
+FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovieOptions& o,
+                             const std::filesystem::path& dir, render::MovieWriter& movie,
+                             render::Renderer& renderer, const char* pass) {
+  const render::Style& style = p.plan.style;
+  render::View view = p.plan.view;
+  const std::size_t n = frames.size();
+  double render_s = 0, png_s = 0, encode_s = 0;
+  bool stopped = p.stopped;
   if (!stopped) {
-    auto sim = make_simulation(physics);
     Progress progress(o.quiet);
-    auto clock = std::chrono::steady_clock::now();
-    stopped = !for_each_frame(*sim, times, progress,
-                              shots.empty() ? "movie" : "pass 2 of 2 (movie)", [&](std::size_t k) {
-                                sim_s += seconds_since(clock);
-                                auto t0 = std::chrono::steady_clock::now();
-                                sim->snapshot(snap);
-                                if (follow) aim(view, shots[k], snap, scans[k]);
-                                render::Image img = renderer.render(snap, style, view);
-                                render_s += seconds_since(t0);
-                                if (o.keep_frames) {
-                                  t0 = std::chrono::steady_clock::now();
-                                  char name[32];
-                                  std::snprintf(name, sizeof name, "frame_%05zu.png", k);
-                                  render::write_png((dir / "frames" / name).string(), img,
-                                                    render::png_text(snap.info, snap.size()));
-                                  png_s += seconds_since(t0);
-                                }
-                                t0 = std::chrono::steady_clock::now();
-                                movie.add(std::move(img));
-                                encode_s += seconds_since(t0);
-                                clock = std::chrono::steady_clock::now();
-                              });
+    stopped = !frames.each(progress, pass, [&](std::size_t k, const Snapshot& snap) {
+      auto t0 = std::chrono::steady_clock::now();
+      if (p.plan.follow) {
+        aim(view, p.shots[k], snap, p.scans[k]);
+      } else if (snap.info.dim == 3 && k < p.scans.size()) {
+        // A fixed camera sees the wrapped box: the cut goes through the front's wrapped centre.
+        Eigen::Vector3d c = p.scans[k].front.center();
+        const double box = snap.info.box;
+        if (box > 0)
+          for (int a = 0; a < 3; ++a) c[a] -= box * std::floor(c[a] / box);
+        view.cut_centre = c;
+      }
+      if (o.orbit != 0) view.azimuth = o.azimuth + o.orbit * (n > 1 ? double(k) / (n - 1) : 0.0);
+      render::Image img = renderer.render(snap, style, view);
+      render_s += seconds_since(t0);
+      if (o.keep_frames) {
+        t0 = std::chrono::steady_clock::now();
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05zu.png", k);
+        render::write_png((dir / "frames" / name).string(), img,
+                          render::png_text(snap.info, snap.size()));
+        png_s += seconds_since(t0);
+      }
+      t0 = std::chrono::steady_clock::now();
+      movie.add(std::move(img));
+      encode_s += seconds_since(t0);
+    });
     progress.done();
   }
-
   const auto t0 = std::chrono::steady_clock::now();
   const auto written = movie.frames_added();
   if (written > 0)
@@ -313,15 +435,136 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
       char pngs[48] = "";
       if (o.keep_frames) std::snprintf(pngs, sizeof pngs, ", write PNGs %.3g s", png_s);
       std::fprintf(stderr,
-                   "grainshock: %s: %lld frames (%s, %dx%d) in %s; simulate %.3g s, render %.3g s, "
-                   "wait for the encoder %.3g s%s\n",
+                   "grainshock: %s: %lld frames (%s, %dx%d) in %s; render %.3g s, wait for the "
+                   "encoder %.3g s%s\n",
                    stopped ? "interrupted" : "finished", static_cast<long long>(written),
                    movie.encoder_name().c_str(), movie.encoded_width(), movie.encoded_height(),
-                   movie.path().c_str(), sim_s, render_s, encode_s, pngs);
+                   movie.path().c_str(), render_s, encode_s, pngs);
     } else
       std::fprintf(stderr, "grainshock: interrupted before the first frame; no movie written\n");
   }
   return {written, stopped};
+}
+
+Plan make_live_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
+  Plan p = make_plan(o);
+  if (p.field_auto)
+    p.style.field =
+        physics.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;
+  else
+    render::parse_field(o.colour_by);  // names an unknown field
+  p.style.scale = render::parse_scale(o.scale, p.style.field);
+  render::check_style(p.style);
+  check_orbit(physics.dim, o, "this run");
+  settle_range(p, physics.dim);
+  return p;
+}
+
+}  // namespace
+
+void check_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o) {
+  frame_times(physics, o);
+  make_live_plan(physics, o);
+}
+
+FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                                   const std::filesystem::path& dir) {
+  Prepared p;
+  p.plan = make_live_plan(physics, o);
+  LiveFrames frames(physics, frame_times(physics, o));
+  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
+  // Opened now so that an unwritable folder is reported before any work.
+  render::MovieWriter movie(dir / "movie.mp4", o.movie);
+  render::Renderer renderer(p.plan.backend);
+  install_stop_handlers();
+  // A 3D slab or clip seen by a fixed camera follows the front's centre, found by the first pass.
+  const bool cut = physics.dim == 3 && (o.slab > 0 || o.clip);
+  if (p.plan.need_range || p.plan.follow || cut) {
+    Progress progress(o.quiet);
+    p.stopped =
+        !frames.each(progress, "pass 1 of 2 (range, camera)", [&](std::size_t, const Snapshot& s) {
+          p.scans.push_back(scan(s, p.plan.style, p.plan.need_range));
+        });
+    progress.done();
+    finish_first_pass(p, physics.dim, o.movie.fps);
+  }
+  return render_pass(frames, p, o, dir, movie, renderer,
+                     p.scans.empty() ? "movie" : "pass 2 of 2 (movie)");
+}
+
+struct StoredMovie::Impl {
+  StoredFrames frames;
+  Prepared prepared;
+  FrontMovieOptions options;
+};
+
+StoredMovie::StoredMovie(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StoredMovie::~StoredMovie() = default;
+StoredMovie::StoredMovie(StoredMovie&&) noexcept = default;
+
+std::size_t StoredMovie::frames() const {
+  return impl_->frames.size();
+}
+
+StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
+                                 const FrontMovieOptions& o) {
+  if (files.empty()) throw UserError("a movie of stored snapshots needs at least one file");
+  auto impl = std::make_unique<StoredMovie::Impl>(StoredMovie::Impl{StoredFrames(files), {}, o});
+  Prepared& p = impl->prepared;
+  p.plan = make_plan(o);
+  StoredFrames& frames = impl->frames;
+  install_stop_handlers();
+  // The first pass reads every file: their times, and what the range and the camera need. A
+  // file that cannot be read, or does not fit with the first, is named before anything is made.
+  Progress progress(o.quiet);
+  std::vector<FrameScan> scans;
+  p.stopped = !frames.each(
+      progress, "pass 1 of 2 (order, range, camera)", [&](std::size_t k, const Snapshot& s) {
+        const std::string& file = frames.path(k);
+        if (k == 0) {
+          p.plan.style.field = render::choose_field(o.colour_by, s, file);
+          p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
+          render::check_style(p.plan.style);
+          check_orbit(s.info.dim, o, "'" + file + "'");
+          settle_range(p.plan, s.info.dim);
+        } else {
+          const FrameScan& first = scans.front();
+          if (s.info.dim != first.dim)
+            throw UserError("'" + file + "' is " + std::to_string(s.info.dim) + "D but '" +
+                            frames.path(0) + "' is " + std::to_string(first.dim) +
+                            "D: a movie's frames share one dimension");
+          if (std::abs(s.info.box - first.box) > 1e-9 * std::max(1.0, first.box))
+            throw UserError("'" + file + "' has box " + format_number(s.info.box) + " but '" +
+                            frames.path(0) + "' has " + format_number(first.box) +
+                            ": a movie's frames share one box");
+        }
+        if (s.size() > 0 && render::needs_velocity(p.plan.style.field) && !s.has_velocity())
+          throw UserError("snapshot '" + file +
+                          "' has no velocities (no velo property); cannot "
+                          "colour by " +
+                          render::field_name(p.plan.style.field));
+        scans.push_back(scan(s, p.plan.style, p.plan.need_range));
+      });
+  progress.done();
+  if (p.stopped) return StoredMovie(std::move(impl));
+  // Frames in order of their Time; files of equal time keep the order they were given in.
+  std::vector<std::size_t> order(scans.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return scans[a].time < scans[b].time; });
+  frames.reorder(order);
+  for (std::size_t k : order) p.scans.push_back(scans[k]);
+  finish_first_pass(p, p.scans.front().dim, o.movie.fps);
+  return StoredMovie(std::move(impl));
+}
+
+FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir) {
+  const FrontMovieOptions& o = m.impl_->options;
+  Prepared& p = m.impl_->prepared;
+  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
+  render::MovieWriter movie(dir / "movie.mp4", o.movie);
+  render::Renderer renderer(p.plan.backend);
+  return render_pass(m.impl_->frames, p, o, dir, movie, renderer, "pass 2 of 2 (movie)");
 }
 
 }  // namespace gs::app

@@ -1,9 +1,10 @@
 #pragma once
 // A movie of the spreading front: runs one realisation and streams its frames into a movie file,
-// with no intermediate files. Used by `grainshock movie`; callable by any command that wants the
-// same movie of its run.
+// with no intermediate files, or draws stored snapshot files in order of their time. Used by
+// `grainshock movie` and `grainshock run --movie`; both kinds share one frame loop.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,10 @@ struct FrontMovieOptions {
   bool range_per_frame = false;  // each frame its own 1-99 percentiles
   bool inset = false;            // the profile across the band, bottom left
   bool show_inactive = false;
-  double slab = 6;  // 3D: a cut through the shell shows the band, the whole shell only its skin
+  double slab = 6;    // 3D: a cut through the shell shows the band, the whole shell only its skin
+  bool clip = false;  // 3D: cut away the half nearer than the plane through the front's centre
   double azimuth = 30, elevation = 20;
+  double orbit = 0;          // 3D: total azimuth turned over the movie, degrees
   bool keep_frames = false;  // also write DIR/frames/frame_NNNNN.png
   std::string backend = "auto";
   bool quiet = false;
@@ -46,5 +49,28 @@ struct FrontMovieResult {
 // the frames so far, or no file if there were none.
 FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
                                    const std::filesystem::path& dir);
+
+// A movie of stored snapshots, prepared by a first pass over the files (which puts them in
+// order of Time and checks them), so that bad input is refused before an output folder is made.
+class StoredMovie {
+ public:
+  struct Impl;
+  explicit StoredMovie(std::unique_ptr<Impl> impl);
+  ~StoredMovie();
+  StoredMovie(StoredMovie&&) noexcept;
+  std::size_t frames() const;
+
+ private:
+  friend FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir);
+  std::unique_ptr<Impl> impl_;
+};
+
+// Reads every file once. UserError naming the file for one that cannot be read, has no
+// velocities when coloured by a speed, lacks the --color-by field (listing those it has), or
+// differs from the first file in dimension or box; and for --orbit on 2D frames.
+StoredMovie prepare_stored_movie(const std::vector<std::string>& files, const FrontMovieOptions& o);
+// Writes dir/movie.mp4 (dir must exist), reading each file again, one ahead on a second thread.
+// A file that fails now ends it with the error and no movie.
+FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir);
 
 }  // namespace gs::app

@@ -9,8 +9,9 @@ namespace gs::render {
 bool Camera::visible(const Eigen::Vector3d& p, double r) const {
   const Eigen::Vector3d d = p - origin;
   if (!perspective) return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
-  if (slab > 0 && std::abs(d.dot(forward)) > slab / 2) return false;
-  if (clip && d.dot(forward) < 0) return false;
+  const double cut = (p - cut_origin).dot(forward);
+  if (slab > 0 && std::abs(cut) > slab / 2) return false;
+  if (clip && cut < 0) return false;
   const Eigen::Vector4d e = view * Eigen::Vector4d(d.x(), d.y(), d.z(), 1);
   const double depth = -e.z();
   if (depth - r > far || depth + r < near || e.head<3>().norm() <= r) return false;
@@ -47,6 +48,7 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   c.tan_half_y = std::tan(v.fov * deg / 2);
   c.tan_half_x = c.tan_half_y * aspect;
   c.origin = v.centre ? *v.centre : centre;
+  c.cut_origin = v.cut_centre ? *v.cut_centre : c.origin;
   radius = std::max(radius + (c.origin - centre).norm(), 1e-6);
   const double half = std::atan(std::min(c.tan_half_x, c.tan_half_y));
   double dist = v.distance > 0 ? v.distance : radius * (1 + v.margin) / std::sin(half) / v.zoom;
@@ -66,7 +68,8 @@ Camera make_camera_3d(const Eigen::Vector3d& centre, double radius, const View& 
   c.view.block<1, 3>(2, 0) = -c.forward.transpose();
   c.view.block<3, 1>(0, 3) = -(c.view.block<3, 3>(0, 0) * eye);
   const double reach = v.slab > 0 ? std::min(radius, v.slab / 2 + 1) : v.clip ? 1.0 : radius;
-  c.near = std::max(dist - reach - 1, dist * 1e-3);
+  const double shift = v.slab > 0 || v.clip ? (c.cut_origin - c.origin).dot(c.forward) : 0.0;
+  c.near = std::max(dist + shift - reach - 1, dist * 1e-3);
   c.far = dist + radius + 1;
   c.proj.setZero();
   c.proj(0, 0) = 1 / c.tan_half_x;

@@ -23,6 +23,7 @@ struct Camera {
   double tan_half_x = 1, tan_half_y = 1;
   double slab = 0;
   bool clip = false;
+  Eigen::Vector3d cut_origin = Eigen::Vector3d::Zero();  // the slab or clip plane's point
 
   double pixels_per_unit() const { return width / (2 * half_w); }
   // False if a disc or sphere of radius r at world point p cannot show in the picture.

@@ -239,6 +239,10 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
                           {c[0], c[1], c[2], 255}});
     sc.shade.push_back(shade);
   };
+  std::size_t most = 0;
+  for (const Snapshot* s : snaps) most += s->size();
+  sc.sprites.reserve(most);
+  sc.shade.reserve(most);
   const float none = std::nanf("");
   if (style.show_inactive) {
     const Snapshot& s = *snaps.back();

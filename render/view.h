@@ -23,6 +23,9 @@ struct View {
   double slab = 0;
   // 3D: drop particles whose centres lie nearer than that plane (a half-space cut).
   bool clip = false;
+  // 3D: the point the slab or clip plane goes through (default: the picture's centre), so a
+  // fixed camera's cut can follow the front.
+  std::optional<Eigen::Vector3d> cut_centre;
 };
 
 }  // namespace gs::render

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -158,6 +159,112 @@ TEST(MovieCommand, BadInputIsOneLineNonZeroAndNoMovie) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_FALSE(fs::exists("/proc/grainshock-movie/movie.mp4"));
+}
+
+// Snapshots of one small 2D run at four times, written by `grainshock run`.
+std::vector<std::string> stored_snapshots(const std::string& name, const std::string& physics) {
+  const auto run = fresh_dir(name);
+  const Result r = test::grainshock("run " + physics +
+                                    " --quiet --snapshot-times 50,100,150 --out " + run.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> files;
+  for (const char* t : {"50", "100", "150", "200"})
+    files.push_back((run / "snapshots" / (std::string("t_") + t + ".xyz")).string());
+  return files;
+}
+
+TEST(MovieCommand, FromStoredSnapshotsInOrderOfTimeMatchingThePngRenderer) {
+  const auto files = stored_snapshots("stored_run", std::string(kSmallRun) + " --t-max 200");
+  const auto dir = fresh_dir("stored");
+  // Given out of order: the movie puts them in order of Time.
+  const Result r =
+      movie(files[2] + " " + files[0] + " " + files[3] + " " + files[1] +
+            " --camera fixed --width 320 --height 240 --keep-frames --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4"}));
+  const Decoded d = decode_movie(dir / "movie.mp4", 2);
+  EXPECT_EQ(d.frames, 4);
+  EXPECT_EQ(d.width, 320);
+  EXPECT_EQ(d.height, 240);
+  const double want[] = {50, 100, 150, 200};
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(png_time(dir / "frames" / ("frame_0000" + std::to_string(k) + ".png")), want[k],
+                1e-9);
+  // Frame 2 is t = 150 as `grainshock render` draws it with the same camera and style; the bound
+  // is test_movie.cpp's (yuv420p round trip), and the t = 100 picture must miss it.
+  const auto png = dir / "render_150.png", other = dir / "render_100.png";
+  const std::string args = " --framing box --width 320 --height 240 --out ";
+  ASSERT_EQ(test::grainshock("render " + files[2] + args + png.string()).exit_code, 0);
+  ASSERT_EQ(test::grainshock("render " + files[1] + args + other.string()).exit_code, 0);
+  const double same = psnr(d.rgb, read_png(png.string()), 320, 240);
+  EXPECT_GE(same, 30.0);
+  EXPECT_LT(psnr(d.rgb, read_png(other.string()), 320, 240), same - 3);
+}
+
+// The camera turns by --orbit over the movie: the first frame is the picture at --azimuth, the
+// last the picture at --azimuth + --orbit.
+TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
+  const auto files = stored_snapshots("orbit_run", "--dim 3 --particles 3000 --seed 5 --t-max 200");
+  const auto dir = fresh_dir("orbit");
+  const std::string snap = files[3];
+  const Result r = movie(snap + " " + snap + " " + snap +
+                         " --camera fixed --slab 0 --azimuth 30 --orbit 90 --width 240 --height"
+                         " 180 --out " +
+                         dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Decoded first = decode_movie(dir / "movie.mp4", 0);
+  const Decoded last = decode_movie(dir / "movie.mp4", 2);
+  ASSERT_EQ(first.frames, 3);
+  std::vector<Image> at;
+  for (const char* az : {"30", "120"}) {
+    const auto png = dir / (std::string("az_") + az + ".png");
+    ASSERT_EQ(test::grainshock("render " + snap + " --framing box --azimuth " + az +
+                               " --width 240 --height 180 --out " + png.string())
+                  .exit_code,
+              0);
+    at.push_back(read_png(png.string()));
+  }
+  EXPECT_GE(psnr(first.rgb, at[0], 240, 180), 30.0);
+  EXPECT_GE(psnr(last.rgb, at[1], 240, 180), 30.0);
+  EXPECT_LT(psnr(last.rgb, at[0], 240, 180), psnr(last.rgb, at[1], 240, 180) - 3);
+}
+
+TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
+  const auto files = stored_snapshots("bad_run", std::string(kSmallRun) + " --t-max 200");
+  const auto three = stored_snapshots("bad_run_3d", "--dim 3 --particles 3000 --t-max 200");
+  const auto other_box = stored_snapshots("bad_run_box", "--particles 4000 --t-max 200");
+  const auto junk = fresh_dir("junk_input");
+  fs::create_directories(junk);
+  const std::string corrupt = (junk / "corrupt.xyz").string();
+  { std::ofstream(corrupt) << "3\nProperties=species:S:1:pos:R:3 Dim=2\nX 1 1 0\n"; }
+  const std::string no_velo = (junk / "no_velo.xyz").string();
+  { std::ofstream(no_velo) << "1\nProperties=species:S:1:pos:R:3 Time=120 Dim=2\nX 1 1 0\n"; }
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {files[0] + " --color-by temperature", "scaled-speed, speed"},
+      {files[0] + " " + no_velo + " " + files[1], "no_velo.xyz"},
+      {files[0] + " " + three[1], "dimension"},
+      {files[0] + " " + other_box[1], "box"},
+      {files[0] + " " + corrupt + " " + files[1], "corrupt.xyz"},
+      {files[0] + " --orbit 90", "--orbit"},
+      {files[0] + " --particles 10", "--particles"},
+  };
+  int i = 0;
+  for (const auto& [args, needle] : bad) {
+    const auto dir = fresh_dir("bad_stored" + std::to_string(i++));
+    const Result r = movie(args + " --quiet --out " + dir.string());
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir)) << args << ": nothing is made";
+  }
+  // --orbit on a live 2D movie too.
+  const auto dir = fresh_dir("bad_orbit_live");
+  const Result r =
+      movie(std::string(kSmallRun) + " --t-max 100 --frames 5 --orbit 45 --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--orbit"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
 }
 
 TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
