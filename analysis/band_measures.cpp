@@ -149,11 +149,23 @@ ShellFront shell_front(std::span<const double> distances, int dim, double ambien
   return f;
 }
 
+ShellFront front_of(std::span<const Eigen::Vector3d> active, int dim, double ambient,
+                    double shell) {
+  if (active.empty()) return {};
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& x : active) centre += x;
+  centre /= double(active.size());
+  std::vector<double> d;
+  d.reserve(active.size());
+  for (const auto& x : active) d.push_back((x - centre).norm());
+  return shell_front(d, dim, ambient, shell);
+}
+
 ShellFront measure_front(const Snapshot& s, double ambient, double shell) {
-  const Snapshot active = active_subset(s);
-  if (active.size() == 0) return {};
-  const Shape shape = measure_shape(active);
-  return shell_front(active_distances(active, shape.centre), s.info.dim, ambient, shell);
+  std::vector<Eigen::Vector3d> active;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (active_at(s, i)) active.push_back(s.position[i]);
+  return front_of(active, s.info.dim, ambient, shell);
 }
 
 BandMeasures measure_band(const Snapshot& s, double ambient, const BandMeasureOptions& o) {

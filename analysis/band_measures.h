@@ -15,6 +15,7 @@
 //    densest shell, first falls below half the ambient density; the peak is that densest shell.
 // Positions are wrapped into the periodic box for the packing measures; distances from the
 // centre use the snapshot's unwrapped positions.
+#include <Eigen/Core>
 #include <limits>
 #include <span>
 
@@ -41,7 +42,10 @@ struct ShellFront {
 ShellFront shell_front(std::span<const double> distances, int dim, double ambient_density,
                        double shell);
 
-// shell_front of the active particles of a snapshot around their centre of mass.
+// shell_front of active particles (unwrapped positions) around their centre of mass, given as
+// positions (Simulation::active_positions) or as a snapshot.
+ShellFront front_of(std::span<const Eigen::Vector3d> active, int dim, double ambient_density,
+                    double shell = 2);
 ShellFront measure_front(const Snapshot& s, double ambient_density, double shell = 2);
 
 struct BandMeasures {

@@ -51,14 +51,15 @@ bool Comparison::agrees() const {
   return std::fabs(measured - theory) <= std::max(u, tolerance);
 }
 
-std::vector<Comparison> case_comparisons(const EnsembleSpec& spec, const EnsembleFits& f,
-                                         const std::string& slope_figure) {
+std::vector<Comparison> case_comparisons(const std::string& case_name, const EnsembleSpec& spec,
+                                         const EnsembleFits& f, const std::string& slope_figure) {
   const auto& p = spec.physics;
   const double r = p.restitution;
   const bool elastic = r >= 1;
   std::vector<Comparison> out;
   auto base = [&](const std::string& q) {
     Comparison c;
+    c.case_name = case_name;
     c.quantity = q;
     c.d = p.dim;
     c.r = r;
@@ -260,7 +261,8 @@ std::string comparisons_json(const std::vector<Comparison>& cmp) {
   j << "[\n";
   for (std::size_t k = 0; k < cmp.size(); ++k) {
     const auto& c = cmp[k];
-    j << "    {\"quantity\": " << json_string(c.quantity) << ", \"d\": " << c.d
+    j << "    {\"case\": " << json_string(c.case_name)
+      << ", \"quantity\": " << json_string(c.quantity) << ", \"d\": " << c.d
       << ", \"r\": " << json_number(c.r) << ", \"measured\": " << json_number(c.measured)
       << ", \"uncertainty\": " << json_number(c.uncertainty)
       << ", \"theory\": " << json_number(c.theory) << ", \"relation\": " << json_string(c.relation)
@@ -275,13 +277,13 @@ std::string comparisons_json(const std::vector<Comparison>& cmp) {
 
 std::string comparisons_markdown(const std::vector<Comparison>& cmp) {
   std::ostringstream md;
-  md << "| quantity | d | r | measured | uncertainty | paper / theory | agrees | figure | note "
-        "|\n|---|---|---|---|---|---|---|---|---|\n";
+  md << "| case | quantity | d | r | measured | uncertainty | paper / theory | agrees | figure | "
+        "note |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : cmp)
-    md << "| " << c.quantity << " | " << c.d << " | "
-       << (std::isfinite(c.r) ? format_number(c.r) : "-") << " | " << fmt(c.measured) << " | "
-       << fmt(c.uncertainty, 2) << " | " << (c.relation == "below" ? "< " : "") << fmt(c.theory)
-       << " | "
+    md << "| " << (c.case_name.empty() ? "-" : c.case_name) << " | " << c.quantity << " | " << c.d
+       << " | " << (std::isfinite(c.r) ? format_number(c.r) : "-") << " | " << fmt(c.measured)
+       << " | " << fmt(c.uncertainty, 2) << " | " << (c.relation == "below" ? "< " : "")
+       << fmt(c.theory) << " | "
        << (!c.measured_ok() ? "not measured"
            : c.agrees()     ? "yes"
                             : "**no**")

@@ -15,6 +15,7 @@ namespace gs {
 
 // One entry of the report's table and of summary.json "comparisons".
 struct Comparison {
+  std::string case_name;  // the ensemble it was measured on (two 3D elastic cases differ in size)
   std::string quantity;
   int d = 0;
   double r = std::numeric_limits<double>::quiet_NaN();
@@ -33,8 +34,8 @@ struct Comparison {
 };
 
 // The comparisons of one ensemble (exponents, identities, A, band measures, shock jump, Q).
-std::vector<Comparison> case_comparisons(const EnsembleSpec& spec, const EnsembleFits& fits,
-                                         const std::string& slope_figure);
+std::vector<Comparison> case_comparisons(const std::string& case_name, const EnsembleSpec& spec,
+                                         const EnsembleFits& fits, const std::string& slope_figure);
 
 // A crossover time of one run with its bootstrap draws, for phi1 (control 1 - r^2) or phi2
 // (control delta).

@@ -556,7 +556,7 @@ void run(const FiguresOptions& o) {
     CaseResult cr{&c, std::move(r.sums), {}, since(tc)};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
     if (!c.delta_scan) {
-      const auto more = case_comparisons(c.spec, cr.fits, slope_figure_of(c));
+      const auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
       cmp.insert(cmp.end(), more.begin(), more.end());
     }
     results.push_back(std::move(cr));

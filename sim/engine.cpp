@@ -514,6 +514,17 @@ Sample Engine<D>::sample() const {
 }
 
 template <int D>
+void Engine<D>::active_positions(std::vector<Eigen::Vector3d>& out) const {
+  out.clear();
+  for (std::int32_t i : moved_) {
+    if (!kin_[i].active) continue;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    x.head<D>() = position(i);
+    out.push_back(x);
+  }
+}
+
+template <int D>
 void Engine<D>::snapshot(Snapshot& s) const {
   s.info = {};
   s.info.dim = D;

@@ -74,6 +74,10 @@ class Simulation {
     snapshot(s);
     return s;
   }
+  // Unwrapped positions of the active particles, in no set order: what the front radius needs at
+  // every sample of an ensemble without copying a whole snapshot (the particles at rest cost
+  // nothing).
+  virtual void active_positions(std::vector<Eigen::Vector3d>& out) const = 0;
   virtual const EngineStats& stats() const = 0;
   // Deepest overlap (1 - distance) of any pair now, by a scan of all cells; 0 if none.
   virtual double max_overlap_now() const = 0;
@@ -100,6 +104,7 @@ class Engine final : public Simulation {
   Sample sample() const override;
   void snapshot(Snapshot& s) const override;
   using Simulation::snapshot;
+  void active_positions(std::vector<Eigen::Vector3d>& out) const override;
   const EngineStats& stats() const override { return stats_; }
   double max_overlap_now() const override;
   void save(CheckpointWriter& out) const override;

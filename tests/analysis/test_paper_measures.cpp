@@ -8,6 +8,7 @@
 
 #include "analysis/band_measures.h"
 #include "analysis/effective_exponent.h"
+#include "analysis/ensemble_runner.h"
 #include "analysis/paper.h"
 #include "analysis/shock.h"
 #include "sim/error.h"
@@ -246,6 +247,40 @@ TEST(CrossoverExponents, RecoverPhi1AndPhi2WithIntervals) {
   EXPECT_NE(none.note.find("r = 0.9: scaling regime not reached"), std::string::npos) << none.note;
   const Comparison c = phi1_comparison(3, none);
   EXPECT_FALSE(c.measured_ok());
+}
+
+TEST(EnsembleFits, AWindowWithoutAPlateauIsRefusedSayingWhereItPlateaus) {
+  EnsembleSpec spec;
+  spec.physics.dim = 2;
+  spec.physics.particles = 2000;
+  spec.physics.restitution = 0.5;
+  spec.physics.t_max = 300;
+  spec.realisations = 3;
+  spec = checked(spec);
+  const RunnerResult run = run_ensemble(spec, {});
+  // Before t = 0.5 no band exists (a handful of particles have moved): no plateau inside.
+  FitOptions o;
+  o.window = Window{0.1, 0.5};
+  try {
+    fit_ensemble(run.sums, o);
+    ADD_FAILURE() << "a window without a plateau was accepted";
+  } catch (const UserError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("--window 0.1,0.5: the local slope of N_t has no plateau inside it"),
+              std::string::npos)
+        << m;
+    EXPECT_TRUE(m.find("it plateaus over [") != std::string::npos ||
+                m.find("no plateau within the run") != std::string::npos)
+        << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+  // The automatic fits of the same ensemble say per quantity whether a plateau was found.
+  const EnsembleFits f = fit_ensemble(run.sums, {});
+  for (const auto& e : f.exponents)
+    EXPECT_TRUE(e.plateau.found ? std::isfinite(e.fit.exponent) || !e.note.empty()
+                                : e.note.find("no plateau within the run") != std::string::npos)
+        << e.quantity << ": " << e.note;
+  EXPECT_LT(f.speed_identity_error, 1e-12);  // v_rms^2 = 2E/N to round-off
 }
 
 }  // namespace
