@@ -100,7 +100,7 @@ FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
     if (in_front(i)) f.front.extend(s.position[i]);
     if (s.active[i] || !f.any_active) f.fit.extend(s.position[i]);
   }
-  if (f.front.isEmpty()) f.front.extend(Eigen::Vector3d::Constant(s.info.box / 2));
+  if (f.front.isEmpty()) f.front.extend(s.info.origin + s.info.box / 2);
   for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
   if (f.any_active && with_range) {
