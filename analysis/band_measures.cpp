@@ -36,7 +36,7 @@ double quantile_of(std::vector<double>& v, double q) {
 }
 
 double densest_shifted_cell(const Snapshot& s, int d, const BandMeasureOptions& o) {
-  const double box = s.info.box;
+  const double box = s.info.cube_side();
   const auto n = std::max<std::int64_t>(1, std::int64_t(std::floor(box / o.cell)));
   const double side = box / double(n);
   const std::size_t cells = std::size_t(std::pow(double(n), d));
@@ -69,7 +69,7 @@ double densest_shifted_cell(const Snapshot& s, int d, const BandMeasureOptions& 
 
 // Local packing within radius a of each active particle, from a periodic cell list of side >= a.
 std::vector<double> local_packing(const Snapshot& s, int d, double a) {
-  const double box = s.info.box;
+  const double box = s.info.cube_side();
   const auto n = std::max<std::int64_t>(1, std::int64_t(std::floor(box / a)));
   const double side = box / double(n);
   const std::size_t cells = std::size_t(std::pow(double(n), d));
@@ -171,7 +171,7 @@ ShellFront measure_front(const Snapshot& s, double ambient, double shell) {
 BandMeasures measure_band(const Snapshot& s, double ambient, const BandMeasureOptions& o) {
   const int d = s.info.dim;
   if (d != 2 && d != 3) throw UserError("band measures: dimension must be 2 or 3");
-  if (!(s.info.box > 0)) throw UserError("band measures need the periodic box side");
+  if (!(s.info.cube_side() > 0)) throw UserError("band measures need a cubic periodic box");
   BandMeasures m;
   m.front = measure_front(s, ambient, o.shell);
   if (!(m.front.peak_density > 0)) return m;  // no band yet

@@ -55,7 +55,7 @@ struct BandMeasures {
   ShellFront front;
 };
 
-// `ambient_density`: number density of the gas at rest. Needs info.box > 0 (periodic box).
+// `ambient_density`: number density of the gas at rest. Needs a cubic periodic box (info.cube_side() > 0).
 BandMeasures measure_band(const Snapshot& s, double ambient_density,
                           const BandMeasureOptions& options = {});
 

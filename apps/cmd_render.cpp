@@ -10,7 +10,7 @@
 #include "render/renderer.h"
 #include "sim/error.h"
 #include "sim/format.h"
-#include "sim/xyz.h"
+#include "sim/snapshot_file.h"
 
 namespace gs::app {
 
@@ -25,13 +25,20 @@ void add_render_command(CLI::App& app) {
     std::string framing = "fit", backend = "auto";
     bool no_colorbar = false, no_time = false, no_legend = false;
     int compression = 1;
+    std::size_t frame = 0;
+    ReadOptions read;
   };
   auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand("render", "Draw snapshot file(s) into a PNG");
   add_config_option(*sub);
   sub->add_option("snapshots", opt->inputs,
-                  "Extended XYZ snapshot(s); several make one picture, one colour per time")
+                  "Snapshot file(s): extended XYZ, LAMMPS dump or GSD; several make one picture, "
+                  "one colour per time")
       ->required();
+  sub->add_option("--frame", opt->frame, "Frame of a multi-frame file, counted from 0")
+      ->capture_default_str();
+  sub->add_option("--dim", opt->read.dim, "Dimension of the files, if not the one they state")
+      ->check(CLI::Range(1, 3));
   sub->add_option("--out", opt->out, "PNG file to write")->required();
   sub->add_option("--width", opt->view.width, "Picture width in pixels")->capture_default_str();
   sub->add_option("--height", opt->view.height, "Picture height in pixels")->capture_default_str();
@@ -130,7 +137,7 @@ void add_render_command(CLI::App& app) {
 
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
-    for (const auto& path : o.inputs) snaps.push_back(read_xyz(path));
+    for (const auto& path : o.inputs) snaps.push_back(read_snapshot(path, o.read, o.frame));
     // One snapshot is coloured by a field (several by time): the first file read decides what
     // "auto" means, and names what it lacks.
     if (snaps.size() == 1) {

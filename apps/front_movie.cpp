@@ -26,6 +26,7 @@
 #include "sim/error.h"
 #include "sim/format.h"
 #include "sim/stop.h"
+#include "sim/snapshot_file.h"
 #include "sim/xyz.h"
 
 namespace gs::app {
@@ -113,7 +114,7 @@ FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
     if (in_front(i)) f.front.extend(s.position[i]);
     if (s.active[i] || !f.any_active) f.fit.extend(s.position[i]);
   }
-  if (f.front.isEmpty()) f.front.extend(Eigen::Vector3d::Constant(s.info.box / 2));
+  if (f.front.isEmpty()) f.front.extend(s.info.origin + s.info.box / 2);
   for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
   if (f.any_active && with_range) {
@@ -316,7 +317,7 @@ class StoredFrames final : public Frames {
           if (quit) return;
         }
         try {
-          Snapshot s = read_xyz(path(k));
+          Snapshot s = read_snapshot(path(k));
           std::lock_guard lock(m);
           slot = std::move(s);
         } catch (...) {

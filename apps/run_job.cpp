@@ -19,6 +19,7 @@
 #include "sim/error.h"
 #include "sim/format.h"
 #include "sim/stop.h"
+#include "sim/snapshot_file.h"
 #include "sim/xyz.h"
 
 namespace gs::app {
@@ -143,7 +144,7 @@ bool write_pictures(const fs::path& dir, const RunOptions& o) {
   fs::create_directories(dir / "frames");
   std::vector<Snapshot> snaps;
   for (double t : snapshot_times(o.plan))
-    snaps.push_back(read_xyz((dir / "snapshots" / snapshot_name(t)).string()));
+    snaps.push_back(read_snapshot((dir / "snapshots" / snapshot_name(t)).string()));
   render::Renderer renderer;
   render::Style style = picture_style(o.plan.physics);
   style.range = common_range(snaps, style);

@@ -29,7 +29,7 @@ namespace {
 Snapshot synthetic(int dim, std::size_t n, double box, double r_in, double r_out) {
   Snapshot s;
   s.info.dim = dim;
-  s.info.box = box;
+  s.info.set_cubic_box(box);
   s.info.time = 1000;
   s.info.density = 0.25;
   std::mt19937_64 rng(2024);
@@ -56,7 +56,7 @@ Snapshot synthetic(int dim, std::size_t n, double box, double r_in, double r_out
 Snapshot band_only(std::size_t n, double box, double r_in, double r_out) {
   Snapshot s;
   s.info.dim = 2;
-  s.info.box = box;
+  s.info.set_cubic_box(box);
   s.info.time = 1000;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);

@@ -143,7 +143,12 @@ PngText png_text(const SnapshotInfo& info, std::size_t particles) {
   t.emplace_back("Time", format_double(info.time));
   t.emplace_back("Dim", std::to_string(info.dim));
   t.emplace_back("N", std::to_string(particles));
-  if (info.box > 0) t.emplace_back("Box", format_double(info.box));
+  if (info.has_box()) {
+    std::string box;  // one number for a cube, as before; the edges of a rectangular box
+    for (int k = 0; k < (info.cube_side() > 0 ? 1 : info.dim); ++k)
+      box += (k ? " " : "") + format_double(info.box[k]);
+    t.emplace_back("Box", box);
+  }
   if (info.density) t.emplace_back("Density", format_double(*info.density));
   if (info.restitution) t.emplace_back("Restitution", format_double(*info.restitution));
   if (info.cutoff) t.emplace_back("Cutoff", format_double(*info.cutoff));

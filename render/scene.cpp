@@ -161,17 +161,22 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
 
   // Framing: the active particles of all snapshots, or the box.
   Eigen::AlignedBox3d fit;
-  double box = 0;
-  for (const Snapshot* s : snaps) box = std::max(box, s->info.box);
-  const bool wrap = view.framing == Framing::Box && box > 0;
+  // The box of the first snapshot that has one (rectangular: each axis its own edge).
+  const SnapshotInfo* boxed = nullptr;
+  for (const Snapshot* s : snaps)
+    if (!boxed && s->info.has_box()) boxed = &s->info;
+  const bool wrap = view.framing == Framing::Box && boxed;
   auto wrapped = [&](Eigen::Vector3d p) {
     if (wrap)
-      for (int k = 0; k < std::min(dim, 3); ++k) p[k] -= box * std::floor(p[k] / box);
+      for (int k = 0; k < dim; ++k) {
+        const double x = p[k] - boxed->origin[k], edge = boxed->box[k];
+        p[k] = boxed->origin[k] + x - edge * std::floor(x / edge);
+      }
     return p;
   };
   if (wrap) {
-    fit.extend(Eigen::Vector3d::Zero());
-    fit.extend(Eigen::Vector3d(box, dim >= 2 ? box : 0, dim == 3 ? box : 0));
+    fit.extend(boxed->origin);
+    fit.extend(boxed->origin + boxed->box);
   }
   for (int pass = 0; pass < 2 && fit.isEmpty(); ++pass)
     for (const Snapshot* s : snaps)

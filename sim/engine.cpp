@@ -528,7 +528,7 @@ template <int D>
 void Engine<D>::snapshot(Snapshot& s) const {
   s.info = {};
   s.info.dim = D;
-  s.info.box = grid_.box();
+  s.info.set_cubic_box(grid_.box());
   s.info.time = now_;
   s.info.density = static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;

@@ -175,7 +175,8 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   const int d = checked_dim(s);
   if (!(options.cell > 0)) throw UserError("packing cell side must be positive");
   BandPacking out;
-  const double box = s.info.box;
+  // A rectangular box (not ours) is not wrapped: cells of side `cell` tile unbounded space.
+  const double box = s.info.cube_side();
   std::int64_t per_side = 0;  // 0: unbounded cells
   double side = options.cell;
   if (box > 0) {

@@ -1,151 +1,411 @@
 #include "sim/xyz.h"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <string_view>
+#include <vector>
 
 #include "sim/atomic_file.h"
 #include "sim/error.h"
+#include "sim/text_scan.h"
 
 namespace gs {
 namespace {
 
-bool iequals(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
-         });
-}
+// A frame's byte ranges, found by the opening scan.
+struct FrameSpan {
+  std::size_t count_line = 0;  // line number of the count line
+  std::size_t comment = 0, body = 0, end = 0;
+  std::uint64_t n = 0;
+};
 
-// Appending instead of chaining operator+ avoids GCC 12's false -Wrestrict on short literals.
-std::string not_a(std::string_view tok, const char* kind, std::string_view name) {
-  std::string m = "'";
-  m.append(tok).append("' is not ").append(kind).append(" (").append(name).append(")");
-  return m;
-}
+// Where each token of a particle line goes.
+struct Slot {
+  enum Kind : std::uint8_t { Skip, Pos, Vel, Momentum, Mass, Radius, Active, First, Extra };
+  Kind kind = Skip;
+  char type = 'R';
+  std::uint32_t index = 0;  // component, or the extra column
+};
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
+struct Header {
+  std::string properties = "species:S:1:pos:R:3";
+  bool lattice = false;
+  double cell[9] = {};
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  bool pbc_given = false, pbc[3] = {true, true, true};
+  int dim = 0;  // stated by Dim, 0 if not
+  SnapshotInfo info;
+};
 
-std::vector<std::string_view> split_ws(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    std::size_t j = i;
-    while (j < s.size() && !is_space(s[j])) ++j;
-    if (j > i) out.push_back(s.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-// Errors carry "file:line:" so a user can open the file at the offending place.
-class Reader {
+class XyzSource final : public FrameSource {
  public:
-  explicit Reader(std::string path) : path_(std::move(path)) {}
-  [[noreturn]] void fail(std::size_t line, const std::string& what) const {
-    throw UserError("snapshot '" + path_ + "' line " + std::to_string(line) + ": " + what);
-  }
-  double real(std::string_view tok, std::size_t line, std::string_view name) const {
-    double v = 0;
-    auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    if (ec != std::errc() || p != tok.data() + tok.size() || !std::isfinite(v))
-      fail(line, not_a(tok, "a finite number", name));
-    return v;
-  }
-  long long integer(std::string_view tok, std::size_t line, std::string_view name) const {
-    long long v = 0;
-    auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    if (ec != std::errc() || p != tok.data() + tok.size())
-      fail(line, not_a(tok, "an integer", name));
-    return v;
-  }
-  bool logical(std::string_view tok, std::size_t line, std::string_view name) const {
-    if (tok == "T" || iequals(tok, "true") || tok == "1") return true;
-    if (tok == "F" || iequals(tok, "false") || tok == "0") return false;
-    fail(line, not_a(tok, "a logical T/F", name));
-  }
+  explicit XyzSource(MappedFile f);
+  std::size_t frames() const override { return frames_.size(); }
+  Snapshot read(std::size_t k) const override;
+  const char* format() const override { return "extended XYZ"; }
 
  private:
-  std::string path_;
+  [[noreturn]] void fail(std::size_t line, std::string_view what) const {
+    throw_at_line(file_.path(), line, what);
+  }
+  Header parse_comment(std::string_view s, std::size_t line) const;
+  double real(std::string_view tok, std::size_t line, std::string_view name) const {
+    return finite_at(file_.path(), line, tok, name);
+  }
+
+  MappedFile file_;
+  std::vector<FrameSpan> frames_;
 };
 
-// key=value pairs of the comment line; values may be "quoted with spaces". Bare keys are flags.
-std::vector<std::pair<std::string, std::string>> parse_comment(std::string_view s,
-                                                               const Reader& r) {
-  std::vector<std::pair<std::string, std::string>> kv;
-  std::size_t i = 0;
-  auto token = [&](bool stop_at_eq) {
-    std::string out;
-    if (i < s.size() && (s[i] == '"' || s[i] == '\'')) {
-      const char q = s[i++];
-      const std::size_t end = s.find(q, i);
-      if (end == std::string_view::npos) r.fail(2, "unterminated quote in the comment line");
-      out = std::string(s.substr(i, end - i));
-      i = end + 1;
-      return out;
+XyzSource::XyzSource(MappedFile f) : file_(std::move(f)) {
+  const std::string_view b = file_.bytes();
+  LineCursor c(b);
+  std::string_view line;
+  while (c.next(line)) {
+    if (is_blank(line)) continue;  // between frames and at the end
+    FrameSpan s;
+    s.count_line = c.line();
+    std::size_t t = 0;
+    const std::string_view tok = next_token(line, t);
+    if (!parse_integer(tok, s.n) || !is_blank(line.substr(t))) {
+      if (frames_.empty())
+        fail(s.count_line, "expected the particle count alone on the first line");
+      fail(s.count_line, "expected the particle count of frame " + std::to_string(frames_.size()) +
+                             " alone on this line (does the count of frame " +
+                             std::to_string(frames_.size() - 1) + " match its lines?)");
     }
-    while (i < s.size() && !is_space(s[i]) && !(stop_at_eq && s[i] == '=')) out += s[i++];
-    return out;
+    s.comment = c.pos();
+    if (!c.next(line)) fail(s.count_line + 1, "file ends before the comment line");
+    s.body = c.pos();
+    const std::size_t found = c.skip(s.n);
+    if (found < s.n)
+      throw UserError("snapshot '" + file_.path() + "' frame " + std::to_string(frames_.size()) +
+                      " is truncated: line " + std::to_string(s.count_line) + " counts " +
+                      std::to_string(s.n) + " particles, " + std::to_string(found) +
+                      " lines follow the comment");
+    s.end = c.pos();
+    frames_.push_back(s);
+  }
+  if (frames_.empty()) throw UserError("snapshot '" + file_.path() + "' is empty");
+}
+
+// key=value pairs of the comment line; values may be quoted ("", '') or bracketed ({}, [])
+// with spaces inside, and '=' may have spaces around it (ASE accepts both). Bare keys are flags.
+Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
+  Header h;
+  std::size_t i = 0;
+  auto skip_space = [&] {
+    while (i < s.size() && is_space(s[i])) ++i;
+  };
+  auto value_token = [&]() -> std::string_view {
+    if (i < s.size() && (s[i] == '"' || s[i] == '\'' || s[i] == '{' || s[i] == '[')) {
+      const char close = s[i] == '{' ? '}' : s[i] == '[' ? ']' : s[i];
+      const std::size_t b = ++i;
+      const std::size_t e = s.find(close, b);
+      if (e == std::string_view::npos) fail(line, "unterminated quote in the comment line");
+      i = e + 1;
+      return s.substr(b, e - b);
+    }
+    const std::size_t b = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    return s.substr(b, i - b);
+  };
+  auto numbers = [&](std::string_view v, double* out, int n, const char* name) {
+    std::size_t k = 0;
+    int got = 0;
+    for (std::string_view t = next_token(v, k); !t.empty(); t = next_token(v, k)) {
+      if (got == n) fail(line, std::string(name) + " must have " + std::to_string(n) + " numbers");
+      out[got++] = real(t, line, name);
+    }
+    if (got != n) fail(line, std::string(name) + " must have " + std::to_string(n) + " numbers");
   };
   while (true) {
-    while (i < s.size() && is_space(s[i])) ++i;
+    skip_space();
     if (i >= s.size()) break;
-    std::string key = token(true);
-    std::string value;
+    const std::size_t kb = i;
+    while (i < s.size() && !is_space(s[i]) && s[i] != '=') ++i;
+    const std::string_view key = s.substr(kb, i - kb);
+    skip_space();
+    std::string_view value;
+    bool has_value = false;
     if (i < s.size() && s[i] == '=') {
       ++i;
-      value = token(false);
+      skip_space();
+      value = value_token();
+      has_value = true;
     }
-    if (key.empty()) r.fail(2, "malformed key=value pair in the comment line");
-    kv.emplace_back(std::move(key), std::move(value));
+    if (!has_value) continue;  // a flag, or words of a free-text comment
+    auto num = [&](const char* name) { return real(value, line, name); };
+    if (iequals(key, "Lattice")) {
+      numbers(value, h.cell, 9, "Lattice");
+      h.lattice = true;
+    } else if (iequals(key, "Origin") || iequals(key, "cell_origin")) {
+      numbers(value, h.origin.data(), 3, "Origin");
+    } else if (iequals(key, "Properties")) {
+      h.properties = std::string(value);
+    } else if (iequals(key, "pbc")) {
+      std::size_t k = 0;
+      int got = 0;
+      bool v[3] = {};
+      for (std::string_view t = next_token(value, k); !t.empty(); t = next_token(value, k)) {
+        const bool yes = t == "T" || t == "1" || iequals(t, "true");
+        if (!yes && !(t == "F" || t == "0" || iequals(t, "false")))
+          fail(line, not_a(t, "a logical T/F", "pbc"));
+        if (got == 3) fail(line, "pbc must have 3 logicals");
+        v[got++] = yes;
+      }
+      if (got == 1)
+        v[1] = v[2] = v[0];
+      else if (got != 3)
+        fail(line, "pbc must have 3 logicals");
+      h.pbc_given = true;
+      std::copy(v, v + 3, h.pbc);
+    } else if (iequals(key, "Time") || iequals(key, "t") || iequals(key, "sim_time")) {
+      h.info.time = num("Time");
+    } else if (iequals(key, "Timestep") || iequals(key, "step")) {
+      std::int64_t step = 0;
+      if (!parse_integer(value, step)) fail(line, not_a(value, "an integer", "Timestep"));
+      h.info.step = step;
+    } else if (iequals(key, "Dim")) {
+      if (!parse_integer(value, h.dim) || h.dim < 1 || h.dim > 3)
+        fail(line, "Dim must be 1, 2 or 3");
+    } else if (iequals(key, "Density")) {
+      h.info.density = num("Density");
+    } else if (iequals(key, "Restitution")) {
+      h.info.restitution = num("Restitution");
+    } else if (iequals(key, "Cutoff")) {
+      h.info.cutoff = num("Cutoff");
+    } else if (iequals(key, "Speed")) {
+      h.info.speed = num("Speed");
+    } else if (iequals(key, "Seed")) {
+      std::uint64_t seed = 0;
+      if (!parse_integer(value, seed) || value.starts_with('+'))
+        fail(line, not_a(value, "an unsigned integer", "Seed"));
+      h.info.seed = seed;
+    }
   }
-  return kv;
+  return h;
 }
 
-struct Column {
-  std::string name;
-  char type = 'R';
-  int count = 1;
-  int first = 0;  // index of its first token on a particle line
-};
-
-std::vector<Column> parse_properties(const std::string& spec, const Reader& r) {
-  std::vector<Column> cols;
-  std::vector<std::string> parts;
-  std::stringstream ss(spec);
-  for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-  if (parts.size() % 3 != 0 || parts.empty())
-    r.fail(2, "Properties='" + spec + "' is not a list of name:type:count");
-  int first = 0;
-  for (std::size_t k = 0; k < parts.size(); k += 3) {
-    Column c;
-    c.name = parts[k];
-    if (parts[k + 1].size() != 1 ||
-        std::string_view("SRIL").find(parts[k + 1][0]) == std::string_view::npos)
-      r.fail(2, "property '" + c.name + "' has unknown type '" + parts[k + 1] + "'");
-    c.type = parts[k + 1][0];
-    c.count = static_cast<int>(r.integer(parts[k + 2], 2, "property count"));
-    if (c.count < 1) r.fail(2, "property '" + c.name + "' has count " + parts[k + 2]);
-    c.first = first;
-    first += c.count;
-    cols.push_back(c);
-  }
-  return cols;
+// Components of a vector property in the extra columns' names.
+std::string component_name(const std::string& name, int k, int count) {
+  if (count == 1) return name;
+  if (count <= 3) return name + "_" + "xyz"[k];
+  return name + "_" + std::to_string(k);
 }
 
-const Column* find_column(const std::vector<Column>& cols,
-                          std::initializer_list<const char*> names) {
-  for (const auto& c : cols)
-    for (const char* n : names)
-      if (iequals(c.name, n)) return &c;
-  return nullptr;
+bool logical(std::string_view t, bool& v) {
+  if (t == "T" || t == "1" || iequals(t, "true")) return v = true, true;
+  if (t == "F" || t == "0" || iequals(t, "false")) return v = false, true;
+  return false;
+}
+
+Snapshot XyzSource::read(std::size_t k) const {
+  const FrameSpan& f = frames_[k];
+  const std::string_view b = file_.bytes();
+  const std::size_t comment_line = f.count_line + 1;
+  std::string_view comment = b.substr(f.comment, f.body - f.comment);
+  if (!comment.empty() && comment.back() == '\n') comment.remove_suffix(1);
+  Header h = parse_comment(comment, comment_line);
+
+  Snapshot s;
+  s.info = h.info;
+
+  // The Properties: name:type:count triples, each token of a line mapped to a slot.
+  std::vector<Slot> slots;
+  std::vector<std::string_view> parts;
+  {
+    const std::string_view p = h.properties;
+    std::size_t a = 0;
+    while (true) {
+      const std::size_t e = p.find(':', a);
+      parts.push_back(p.substr(a, e == std::string_view::npos ? e : e - a));
+      if (e == std::string_view::npos) break;
+      a = e + 1;
+    }
+  }
+  if (parts.size() % 3 != 0)
+    fail(comment_line,
+         "Properties='" + h.properties.substr(0, 200) + "' is not a list of name:type:count");
+  // A line has at most one token per 2 bytes, so a count beyond that cannot be right.
+  const std::size_t max_tokens = std::min<std::size_t>(f.end - f.body + 1, std::size_t{1} << 24);
+  int pos_count = 0;
+  bool has_vel = false, has_mom = false, has_mass = false, has_radius = false, has_active = false,
+       has_first = false;
+  for (std::size_t p = 0; p < parts.size(); p += 3) {
+    const std::string name(parts[p]);
+    const std::string_view type = parts[p + 1];
+    std::uint32_t count = 0;
+    if (type.size() != 1 || std::string_view("SRIL").find(type[0]) == std::string_view::npos)
+      fail(comment_line, "property '" + name + "' has unknown type '" + std::string(type) +
+                             "' (use S, R, I or L)");
+    if (!parse_integer(parts[p + 2], count) || count < 1 || count > max_tokens ||
+        slots.size() + count > max_tokens)
+      fail(comment_line, "property '" + name + "' has count '" + std::string(parts[p + 2]) +
+                             "', more columns than the frame's lines can hold");
+    const char t = type[0];
+    auto add = [&](Slot::Kind kind) {
+      for (std::uint32_t c = 0; c < count; ++c) slots.push_back({kind, t, c});
+    };
+    auto need = [&](bool ok, const char* what) {
+      if (!ok) fail(comment_line, "property '" + name + "' must be " + what);
+    };
+    if (iequals(name, "pos") || iequals(name, "positions")) {
+      need(t == 'R' && count <= 3 && pos_count == 0, "R:1, R:2 or R:3 and given once");
+      pos_count = static_cast<int>(count);
+      add(Slot::Pos);
+    } else if (!has_vel &&
+               (iequals(name, "velo") || iequals(name, "vel") || iequals(name, "velocities"))) {
+      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
+      has_vel = true;
+      add(Slot::Vel);
+    } else if (!has_mom && iequals(name, "momenta")) {
+      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
+      has_mom = true;
+      add(Slot::Momentum);
+    } else if (!has_mass && (iequals(name, "masses") || iequals(name, "mass"))) {
+      need(t == 'R' && count == 1, "R:1");
+      has_mass = true;
+      add(Slot::Mass);
+    } else if (!has_radius && (iequals(name, "radius") || iequals(name, "radii"))) {
+      need(t == 'R' && count == 1, "R:1");
+      has_radius = true;
+      add(Slot::Radius);
+    } else if (!has_active && iequals(name, "active")) {
+      need((t == 'I' || t == 'L') && count == 1, "I:1 or L:1");
+      has_active = true;
+      add(Slot::Active);
+    } else if (!has_first && iequals(name, "first_collision")) {
+      need(t == 'R' && count == 1, "R:1");
+      has_first = true;
+      add(Slot::First);
+    } else if (t == 'S') {
+      add(Slot::Skip);  // species names, labels
+    } else {
+      for (std::uint32_t c = 0; c < count; ++c) {
+        slots.push_back({Slot::Extra, t, static_cast<std::uint32_t>(s.columns.size())});
+        s.columns.push_back(
+            {component_name(name, static_cast<int>(c), static_cast<int>(count)), {}});
+      }
+    }
+  }
+  if (pos_count == 0) fail(comment_line, "Properties has no pos column");
+  const bool velocity = has_vel || has_mom;
+  if (has_vel && has_mom)  // velo wins; momenta is then an extra column
+    for (auto& sl : slots)
+      if (sl.kind == Slot::Momentum) sl.kind = Slot::Skip;
+
+  // The cell: rectangular, its vectors in any order along the axes.
+  bool zero_third = true;
+  if (h.lattice) {
+    bool axis_used[3] = {};
+    for (int v = 0; v < 3; ++v) {
+      const double* a = h.cell + 3 * v;
+      int nonzero = 0, axis = -1;
+      for (int c = 0; c < 3; ++c)
+        if (a[c] != 0) ++nonzero, axis = c;
+      if (nonzero > 1)
+        fail(comment_line,
+             "the Lattice is triclinic (a cell vector has more than one non-zero component); "
+             "only rectangular boxes are supported");
+      if (nonzero == 0) continue;
+      if (axis_used[axis]) fail(comment_line, "the Lattice has two cell vectors along one axis");
+      axis_used[axis] = true;
+      if (v == 2) zero_third = false;
+      s.info.box[axis] = std::abs(a[axis]);
+      s.info.origin[axis] = h.origin[axis] + std::min(a[axis], 0.0);
+    }
+    for (int c = 0; c < 3; ++c)
+      if (!axis_used[c]) s.info.origin[c] = h.origin[c];
+  }
+  // The dimension as the file states it (0: not stated).
+  int stated = h.dim;
+  if (stated == 0 && pos_count < 3) stated = pos_count;
+  if (stated == 0 && h.lattice && h.pbc_given && h.pbc[0] && h.pbc[1] && !h.pbc[2] && zero_third)
+    stated = 2;
+  s.info.dim = stated;
+
+  // Allocation is bounded by the bytes of the frame: every token takes at least two, so more
+  // tokens than bytes is a lie told before anything is allocated (short lines are found below).
+  const std::uint64_t n = f.n;
+  const std::size_t ntok = slots.size();
+  if (n > 0 && ntok > (f.end - f.body + 1) / n)
+    fail(comment_line, "Properties declares " + std::to_string(ntok) + " columns, more than the " +
+                           std::to_string(n) + " lines of the frame hold");
+  s.position.assign(n, Eigen::Vector3d::Zero());
+  if (velocity) s.velocity.assign(n, Eigen::Vector3d::Zero());
+  if (has_radius) s.radius.resize(n);
+  if (has_active) s.active.resize(n);
+  if (has_first) s.first_collision.resize(n);
+  std::vector<double> mass;
+  if (has_mom && !has_vel && has_mass) mass.resize(n);
+  for (auto& c : s.columns) c.values.resize(n);
+  const int check_from = stated > 0 && stated < 3 ? stated : 3;
+
+  scan_rows(
+      b.substr(f.body, f.end - f.body), n, ntok, f.count_line + 2, file_.path(),
+      [&](std::size_t i, std::size_t t, std::string_view tok, std::size_t line_no) {
+        const Slot& sl = slots[t];
+        switch (sl.kind) {
+          case Slot::Skip:
+            break;
+          case Slot::Pos:
+            s.position[i][sl.index] = real(tok, line_no, "pos");
+            break;
+          case Slot::Vel:
+            s.velocity[i][sl.index] = real(tok, line_no, "velo");
+            break;
+          case Slot::Momentum:
+            s.velocity[i][sl.index] = real(tok, line_no, "momenta");
+            break;
+          case Slot::Mass: {
+            const double m = real(tok, line_no, "masses");
+            if (!(m > 0)) fail(line_no, "masses must be positive");
+            if (!mass.empty()) mass[i] = m;
+            break;
+          }
+          case Slot::Radius:
+            s.radius[i] = real(tok, line_no, "radius");
+            if (!(s.radius[i] > 0)) fail(line_no, "radius must be positive");
+            break;
+          case Slot::Active: {
+            bool v = false;
+            long long iv = 0;
+            if (sl.type == 'L' ? !logical(tok, v) : !parse_integer(tok, iv))
+              fail(line_no, not_a(tok, sl.type == 'L' ? "a logical T/F" : "an integer", "active"));
+            s.active[i] = sl.type == 'L' ? v : iv != 0;
+            break;
+          }
+          case Slot::First:
+            s.first_collision[i] = real(tok, line_no, "first_collision");
+            break;
+          case Slot::Extra: {
+            double v = 0;
+            bool lv = false;
+            long long iv = 0;
+            const auto& name = s.columns[sl.index].name;
+            if (sl.type == 'R') {
+              if (!parse_real(tok, v)) fail(line_no, not_a(tok, "a number", name));
+            } else if (sl.type == 'I') {
+              if (!parse_integer(tok, iv)) fail(line_no, not_a(tok, "an integer", name));
+              v = static_cast<double>(iv);
+            } else {
+              if (!logical(tok, lv)) fail(line_no, not_a(tok, "a logical T/F", name));
+              v = lv;
+            }
+            s.columns[sl.index].values[i] = v;
+            break;
+          }
+        }
+      },
+      [&](std::size_t i, std::size_t line_no) {
+        for (int c = check_from; c < 3; ++c)
+          if (s.position[i][c] != 0 || (velocity && s.velocity[i][c] != 0))
+            fail(line_no,
+                 "the file is " + std::to_string(stated) + "D but a component beyond it is not 0");
+      });
+  if (!mass.empty())
+    for (std::size_t i = 0; i < n; ++i) s.velocity[i] /= mass[i];
+  return s;
 }
 
 void append_number(std::string& out, double x) {
@@ -156,114 +416,8 @@ void append_number(std::string& out, double x) {
 
 }  // namespace
 
-Snapshot read_xyz(const std::string& path) {
-  const Reader r(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError("cannot open snapshot '" + path + "'");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw UserError("cannot read snapshot '" + path + "'");
-
-  std::size_t pos = 0, line_no = 0;
-  auto next_line = [&](std::string_view& line) {
-    if (pos >= text.size()) return false;
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    line = std::string_view(text).substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    return true;
-  };
-
-  std::string_view line;
-  if (!next_line(line)) throw UserError("snapshot '" + path + "' is empty");
-  const auto count_tok = split_ws(line);
-  if (count_tok.size() != 1) r.fail(1, "expected the particle count alone on the first line");
-  const long long n = r.integer(count_tok[0], 1, "particle count");
-  if (n < 0) r.fail(1, "negative particle count");
-  if (!next_line(line)) r.fail(2, "file ends before the comment line");
-
-  Snapshot s;
-  s.info.dim = 3;
-  std::string properties = "species:S:1:pos:R:3";
-  for (const auto& [key, value] : parse_comment(line, r)) {
-    auto num = [&](const char* name) { return r.real(value, 2, name); };
-    if (iequals(key, "Lattice")) {
-      const auto t = split_ws(value);
-      if (t.size() != 9) r.fail(2, "Lattice must have 9 numbers");
-      s.info.box = r.real(t[0], 2, "Lattice");
-      if (s.info.box <= 0) r.fail(2, "Lattice side must be positive");
-    } else if (iequals(key, "Properties")) {
-      properties = value;
-    } else if (iequals(key, "Time")) {
-      s.info.time = num("Time");
-    } else if (iequals(key, "Dim")) {
-      const long long d = r.integer(value, 2, "Dim");
-      if (d < 1 || d > 3) r.fail(2, "Dim must be 1, 2 or 3");
-      s.info.dim = static_cast<int>(d);
-    } else if (iequals(key, "Density")) {
-      s.info.density = num("Density");
-    } else if (iequals(key, "Restitution")) {
-      s.info.restitution = num("Restitution");
-    } else if (iequals(key, "Cutoff")) {
-      s.info.cutoff = num("Cutoff");
-    } else if (iequals(key, "Speed")) {
-      s.info.speed = num("Speed");
-    } else if (iequals(key, "Seed")) {
-      std::uint64_t seed = 0;
-      auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), seed);
-      if (ec != std::errc() || p != value.data() + value.size())
-        r.fail(2, "Seed '" + value + "' is not an unsigned integer");
-      s.info.seed = seed;
-    }
-  }
-  const auto cols = parse_properties(properties, r);
-  const Column* c_pos = find_column(cols, {"pos", "positions"});
-  const Column* c_vel = find_column(cols, {"velo", "vel", "velocities"});
-  const Column* c_rad = find_column(cols, {"radius", "radii"});
-  const Column* c_act = find_column(cols, {"active"});
-  const Column* c_first = find_column(cols, {"first_collision"});
-  if (!c_pos || c_pos->type != 'R' || c_pos->count != 3) r.fail(2, "Properties needs pos:R:3");
-  if (c_vel && (c_vel->type != 'R' || c_vel->count != 3)) r.fail(2, "velo must be R:3");
-  if (c_rad && (c_rad->type != 'R' || c_rad->count != 1)) r.fail(2, "radius must be R:1");
-  if (c_act && ((c_act->type != 'I' && c_act->type != 'L') || c_act->count != 1))
-    r.fail(2, "active must be I:1 or L:1");
-  if (c_first && (c_first->type != 'R' || c_first->count != 1))
-    r.fail(2, "first_collision must be R:1");
-  const std::size_t ntok = static_cast<std::size_t>(cols.back().first + cols.back().count);
-
-  const auto un = static_cast<std::size_t>(n);
-  s.position.resize(un);
-  if (c_vel) s.velocity.resize(un);
-  s.radius.assign(un, 0.5);
-  s.active.assign(un, 1);  // a hand-written file without the column shows every particle
-  if (c_first) s.first_collision.resize(un);
-
-  std::vector<std::string_view> tok;
-  for (std::size_t i = 0; i < un; ++i) {
-    if (!next_line(line))
-      throw UserError("snapshot '" + path + "' is truncated: expected " + std::to_string(n) +
-                      " particle lines, found " + std::to_string(i));
-    tok = split_ws(line);
-    if (tok.size() != ntok)
-      r.fail(line_no,
-             "expected " + std::to_string(ntok) + " columns, found " + std::to_string(tok.size()));
-    for (int k = 0; k < 3; ++k) s.position[i][k] = r.real(tok[c_pos->first + k], line_no, "pos");
-    if (c_vel)
-      for (int k = 0; k < 3; ++k) s.velocity[i][k] = r.real(tok[c_vel->first + k], line_no, "velo");
-    if (c_rad) {
-      s.radius[i] = r.real(tok[c_rad->first], line_no, "radius");
-      if (s.radius[i] <= 0) r.fail(line_no, "radius must be positive");
-    }
-    if (c_act)
-      s.active[i] = c_act->type == 'L' ? r.logical(tok[c_act->first], line_no, "active")
-                                       : r.integer(tok[c_act->first], line_no, "active") != 0;
-    if (c_first) s.first_collision[i] = r.real(tok[c_first->first], line_no, "first_collision");
-    for (int k = s.info.dim; k < 3; ++k)
-      if (s.position[i][k] != 0 || (c_vel && s.velocity[i][k] != 0))
-        r.fail(line_no,
-               "Dim=" + std::to_string(s.info.dim) + " but a component beyond it is not 0");
-  }
-  return s;
+std::unique_ptr<FrameSource> open_xyz(MappedFile file) {
+  return std::make_unique<XyzSource>(std::move(file));
 }
 
 void write_xyz(const std::string& path, const Snapshot& s) {
@@ -276,10 +430,11 @@ void write_xyz(const std::string& path, const Snapshot& s) {
   out.reserve(64 + n * (s.has_velocity() ? 120 : 60));
   out += std::to_string(n);
   out += "\nLattice=\"";
+  const double side = s.info.box.maxCoeff();
   for (int k = 0; k < 9; ++k) {
     if (k) out += ' ';
     if (k % 4 == 0)
-      append_number(out, s.info.box);
+      append_number(out, s.info.box[k / 4] > 0 ? s.info.box[k / 4] : side);
     else
       out += '0';
   }

@@ -16,7 +16,7 @@ constexpr double pi = std::numbers::pi;
 Snapshot make_snapshot(int dim, double box = 0) {
   Snapshot s;
   s.info.dim = dim;
-  s.info.box = box;
+  s.info.set_cubic_box(box);
   return s;
 }
 

@@ -151,7 +151,7 @@ TEST(BandMeasures, FrontRadiusOfASyntheticProfile) {
 Snapshot lattice_band(double L, double s, double x0, double x1) {
   Snapshot snap;
   snap.info.dim = 2;
-  snap.info.box = L;
+  snap.info.set_cubic_box(L);
   for (double x = x0 + s / 2; x < x1; x += s)
     for (double y = s / 2; y < L; y += s) {
       snap.position.emplace_back(x, y, 0);

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "render/png.h"
-#include "sim/xyz.h"
+#include "sim/snapshot_file.h"
 #include "tests/apps/cli_test_util.h"
 
 namespace gs {
@@ -38,7 +38,7 @@ TEST(CliRun, WritesTheRunFolder) {
   for (const char* key :
        {"\"setup_seconds\"", "\"run_seconds\"", "\"snapshot_seconds\"", "\"checkpoint_seconds\""})
     EXPECT_NE(timing.find(key), std::string::npos) << key;
-  const Snapshot s = read_xyz((dir / "snapshots/t_300.xyz").string());
+  const Snapshot s = read_snapshot((dir / "snapshots/t_300.xyz").string());
   EXPECT_EQ(s.size(), 3000u);
   EXPECT_EQ(s.info.dim, 2);
   EXPECT_DOUBLE_EQ(s.info.time, 300.0);
@@ -61,7 +61,7 @@ TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
     EXPECT_EQ(img.height, 360) << f;
   }
   // The elastic gas moves the same kick's energy without loss.
-  const Snapshot elastic = read_xyz((dir / "snapshots/elastic_t_150.xyz").string());
+  const Snapshot elastic = read_snapshot((dir / "snapshots/elastic_t_150.xyz").string());
   double energy = 0;
   for (const auto& v : elastic.velocity) energy += 0.5 * v.squaredNorm();
   EXPECT_NEAR(energy, 0.5, 1e-12);
@@ -79,7 +79,7 @@ TEST(CliRun, NoPhysicsFlagsRunTheFig1Job) {
                         "frames/t_100000.png", "frames/overlay.png", "frames/elastic_t_50000.png",
                         "snapshots/t_100000.xyz", "movie.mp4", "timeseries.csv"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
-  const Snapshot s = read_xyz((dir / "snapshots/t_100000.xyz").string());
+  const Snapshot s = read_snapshot((dir / "snapshots/t_100000.xyz").string());
   EXPECT_EQ(s.size(), 250000u);
   EXPECT_EQ(s.info.restitution.value_or(-1), 0.1);
   EXPECT_EQ(render::read_png((dir / "frames/overlay.png").string()).width, 1920);

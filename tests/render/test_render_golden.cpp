@@ -34,7 +34,7 @@ void add(Snapshot& s, Eigen::Vector3d p, Eigen::Vector3d v, bool active = true) 
 Snapshot empty_snapshot(int dim, double box, double time) {
   Snapshot s;
   s.info.dim = dim;
-  s.info.box = box;
+  s.info.set_cubic_box(box);
   s.info.time = time;
   s.info.density = 0.25;
   return s;

@@ -24,7 +24,7 @@ OverlayPainter& painter() {
 Snapshot ring(double inner, double outer) {
   Snapshot s;
   s.info.dim = 2;
-  s.info.box = 100;
+  s.info.set_cubic_box(100);
   s.info.time = 50;
   for (int layer = 0; layer <= 10; ++layer) {
     const double r = 20 + layer;

@@ -1,3 +1,4 @@
+#include "sim/snapshot_file.h"
 #include "sim/xyz.h"
 
 #include <gtest/gtest.h>
@@ -26,10 +27,10 @@ std::string write_text(const std::string& name, const std::string& text) {
   return p;
 }
 
-// The message of the UserError read_xyz throws, or "accepted".
+// The message of the UserError read_snapshot throws, or "accepted".
 std::string read_error(const std::string& path) {
   try {
-    read_xyz(path);
+    read_snapshot(path);
   } catch (const UserError& e) {
     return e.what();
   }
@@ -39,7 +40,7 @@ std::string read_error(const std::string& path) {
 Snapshot sample(bool with_velocity, bool with_first) {
   Snapshot s;
   s.info.dim = 2;
-  s.info.box = 63.245553203367585;
+  s.info.set_cubic_box(63.245553203367585);
   s.info.time = 1.0 / 3.0;
   s.info.density = 0.25;
   s.info.restitution = 0.1;
@@ -62,7 +63,7 @@ TEST(Xyz, RoundTripIsExact) {
       const Snapshot s = sample(vel, first);
       const auto p = out_path("round_trip.xyz");
       write_xyz(p, s);
-      const Snapshot t = read_xyz(p);
+      const Snapshot t = read_snapshot(p);
       EXPECT_EQ(t.info.dim, 2);
       EXPECT_EQ(t.info.box, s.info.box);
       EXPECT_EQ(t.info.time, s.info.time);
@@ -82,9 +83,9 @@ TEST(Xyz, RoundTripIsExact) {
 
 TEST(Xyz, ReadsHandWrittenFiles) {
   // Plain XYZ: positions only, no Dim (so 3D), defaults for the rest.
-  auto s = read_xyz(write_text("plain.xyz", "2\nhello\nC 1 2 3\nC 4 5 6.5\n"));
+  auto s = read_snapshot(write_text("plain.xyz", "2\nhello\nC 1 2 3\nC 4 5 6.5\n"));
   EXPECT_EQ(s.info.dim, 3);
-  EXPECT_EQ(s.info.box, 0);
+  EXPECT_FALSE(s.info.has_box());
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s.position[1], Eigen::Vector3d(4, 5, 6.5));
   EXPECT_FALSE(s.has_velocity());
@@ -93,12 +94,12 @@ TEST(Xyz, ReadsHandWrittenFiles) {
   EXPECT_TRUE(s.first_collision.empty());
 
   // Other order, an extra property, logical active, quoted values, a trailing blank line.
-  s = read_xyz(write_text("reordered.xyz",
-                          "2\nTime=2.5 Properties=vel:R:3:charge:R:1:pos:R:3:active:L:1 "
-                          "Dim=2 Lattice=\"10 0 0 0 10 0 0 0 10\" pbc=\"T T T\"\n"
-                          "1 0 0  7  3 4 0  T\n-1 2 0 7 5 6 0 F\n\n"));
+  s = read_snapshot(write_text("reordered.xyz",
+                               "2\nTime=2.5 Properties=vel:R:3:charge:R:1:pos:R:3:active:L:1 "
+                               "Dim=2 Lattice=\"10 0 0 0 10 0 0 0 10\" pbc=\"T T T\"\n"
+                               "1 0 0  7  3 4 0  T\n-1 2 0 7 5 6 0 F\n\n"));
   EXPECT_EQ(s.info.dim, 2);
-  EXPECT_EQ(s.info.box, 10);
+  EXPECT_EQ(s.info.box, Eigen::Vector3d(10, 10, 0));
   EXPECT_EQ(s.info.time, 2.5);
   EXPECT_EQ(s.position[0], Eigen::Vector3d(3, 4, 0));
   EXPECT_EQ(s.velocity[1], Eigen::Vector3d(-1, 2, 0));

@@ -1,0 +1,133 @@
+#pragma once
+// Line and token scanning shared by the text snapshot readers (extended XYZ, LAMMPS dumps):
+// no copies, no iostreams, numbers through std::from_chars, errors as "file line N: ...".
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+namespace gs {
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+inline bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    char x = a[i], y = b[i];
+    if (x >= 'A' && x <= 'Z') x = static_cast<char>(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = static_cast<char>(y - 'A' + 'a');
+    if (x != y) return false;
+  }
+  return true;
+}
+
+// The next whitespace-separated token of `s` from `i` on; empty at the end.
+inline std::string_view next_token(std::string_view s, std::size_t& i) {
+  while (i < s.size() && is_space(s[i])) ++i;
+  const std::size_t b = i;
+  while (i < s.size() && !is_space(s[i])) ++i;
+  return s.substr(b, i - b);
+}
+
+inline bool is_blank(std::string_view s) {
+  for (char c : s)
+    if (!is_space(c)) return false;
+  return true;
+}
+
+// Whole-token numbers; a leading '+' is accepted (from_chars alone refuses it).
+inline bool parse_real(std::string_view t, double& v) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  return ec == std::errc() && p == t.data() + t.size() && !t.empty();
+}
+template <class Int>
+bool parse_integer(std::string_view t, Int& v) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  return ec == std::errc() && p == t.data() + t.size() && !t.empty();
+}
+
+// Lines of a text, with their numbers (from 1) for messages.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text, std::size_t pos = 0, std::size_t line = 0)
+      : text_(text), pos_(pos), line_(line) {}
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    const void* nl = std::memchr(text_.data() + pos_, '\n', text_.size() - pos_);
+    const std::size_t end = nl ? static_cast<const char*>(nl) - text_.data() : text_.size();
+    line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_;
+    return true;
+  }
+  // Skips up to n lines; returns how many there were.
+  std::size_t skip(std::size_t n) {
+    std::size_t k = 0;
+    while (k < n && pos_ < text_.size()) {
+      const void* nl = std::memchr(text_.data() + pos_, '\n', text_.size() - pos_);
+      pos_ = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text_.data()) + 1
+                : text_.size();
+      ++k;
+    }
+    line_ += k;
+    return k;
+  }
+  std::size_t pos() const { return std::min(pos_, text_.size()); }
+  std::size_t line() const { return line_; }  // number of the line last returned
+  bool at_end() const { return pos_ >= text_.size(); }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_, line_;
+};
+
+// "snapshot 'path' line N: what", thrown as UserError.
+[[noreturn]] void throw_at_line(const std::string& path, std::size_t line, std::string_view what);
+
+// The particle lines of a frame: `rows` lines of exactly `columns` tokens from `body` on, the
+// first of them line number `first_line`. Calls token(i, t, tok, line) for column t of row i,
+// then row_done(i, line). A missing or extra token is an error naming the line.
+template <class Token, class RowDone>
+void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std::size_t first_line,
+               const std::string& path, Token&& token, RowDone&& row_done) {
+  const char* p = body.data();
+  const char* const end = body.data() + body.size();
+  for (std::size_t i = 0; i < rows; ++i) {
+    const std::size_t line = first_line + i;
+    const char* eol = p < end ? static_cast<const char*>(std::memchr(p, '\n', end - p)) : end;
+    if (!eol) eol = end;
+    const char* q = p;
+    std::size_t t = 0;
+    for (; t < columns; ++t) {
+      while (q < eol && is_space(*q)) ++q;
+      if (q == eol) break;
+      const char* te = q;
+      while (te < eol && !is_space(*te)) ++te;
+      token(i, t, std::string_view(q, te - q), line);
+      q = te;
+    }
+    while (q < eol && is_space(*q)) ++q;
+    if (t < columns || q != eol) {
+      std::size_t found = t, j = 0;
+      const std::string_view rest(q, eol - q);
+      while (!next_token(rest, j).empty()) ++found;
+      throw_at_line(
+          path, line,
+          "expected " + std::to_string(columns) + " columns, found " + std::to_string(found));
+    }
+    row_done(i, line);
+    p = eol + 1;
+  }
+}
+// The finite number `tok` is, or an error at that line naming the column.
+double finite_at(const std::string& path, std::size_t line, std::string_view tok,
+                 std::string_view name);
+// "'tok' is not <kind> (<name>)"
+std::string not_a(std::string_view tok, std::string_view kind, std::string_view name);
+
+}  // namespace gs
