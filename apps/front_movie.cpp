@@ -27,7 +27,6 @@
 #include "sim/format.h"
 #include "sim/stop.h"
 #include "sim/snapshot_file.h"
-#include "sim/xyz.h"
 
 namespace gs::app {
 namespace {
