@@ -92,7 +92,7 @@ bool for_each_frame(Simulation& sim, const std::vector<double>& times, Progress&
 struct FrameScan {
   double time = 0;
   int dim = 2;
-  double box = 0;
+  Eigen::Vector3d box = Eigen::Vector3d::Zero();  // edges of the periodic box
   bool any_active = false;
   std::pair<double, double> range{0, 1};
   Eigen::AlignedBox3d front;  // active particles, else the moving ones (the kicked particle)
@@ -401,9 +401,10 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       } else if (snap.info.dim == 3 && k < p.scans.size()) {
         // A fixed camera sees the wrapped box: the cut goes through the front's wrapped centre.
         Eigen::Vector3d c = p.scans[k].front.center();
-        const double box = snap.info.box;
-        if (box > 0)
-          for (int a = 0; a < 3; ++a) c[a] -= box * std::floor(c[a] / box);
+        const Eigen::Vector3d& box = snap.info.box;
+        const Eigen::Vector3d& lo = snap.info.origin;
+        for (int a = 0; a < 3; ++a)
+          if (box[a] > 0) c[a] -= box[a] * std::floor((c[a] - lo[a]) / box[a]);
         view.cut_centre = c;
       }
       if (o.orbit != 0) view.azimuth = o.azimuth + o.orbit * (n > 1 ? double(k) / (n - 1) : 0.0);
@@ -533,10 +534,17 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
             throw UserError("'" + file + "' is " + std::to_string(s.info.dim) + "D but '" +
                             frames.path(0) + "' is " + std::to_string(first.dim) +
                             "D: a movie's frames share one dimension");
-          if (std::abs(s.info.box - first.box) > 1e-9 * std::max(1.0, first.box))
-            throw UserError("'" + file + "' has box " + format_number(s.info.box) + " but '" +
-                            frames.path(0) + "' has " + format_number(first.box) +
+          if ((s.info.box - first.box).cwiseAbs().maxCoeff() >
+              1e-9 * std::max(1.0, first.box.maxCoeff())) {
+            auto edges = [&](const Eigen::Vector3d& b) {
+              std::string e = format_number(b[0]);
+              for (int a = 1; a < s.info.dim; ++a) e += " x " + format_number(b[a]);
+              return e;
+            };
+            throw UserError("'" + file + "' has box " + edges(s.info.box) + " but '" +
+                            frames.path(0) + "' has " + edges(first.box) +
                             ": a movie's frames share one box");
+          }
         }
         if (s.size() > 0 && render::needs_velocity(p.plan.style.field) && !s.has_velocity())
           throw UserError("snapshot '" + file +
