@@ -68,7 +68,7 @@ TEST(CliUsage, UnknownWordsAreNamedWithTheNearestValidOne) {
       {"compare a.png b.png --tolerence=3",
        "unknown flag '--tolerence' for 'compare'; did you mean '--tolerance'?"},
       {"run --zzzzzz", "unknown flag '--zzzzzz' for 'run'"},
-      {"", "a subcommand is required: run, render,"},
+      {"", "a subcommand is required: run, resume, render,"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = grainshock(args);
