@@ -2,12 +2,20 @@
 // Running the grainshock binary from tests: exit code, stderr lines, scratch folders.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
+
+extern char** environ;
 
 namespace gs::test {
 
@@ -57,6 +65,36 @@ inline CommandResult run_program(const std::string& program, const std::string& 
 
 inline CommandResult grainshock(const std::string& args, const std::string& env = "") {
   return run_program(GRAINSHOCK_BINARY, args, env);
+}
+
+// ARGS split at spaces, as the shell splits them for grainshock() (test paths have none).
+inline std::vector<std::string> words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> w;
+  for (std::string x; in >> x;) w.push_back(x);
+  return w;
+}
+
+// Starts `grainshock ARGS` as a child, stdout to /dev/null and stderr to `err`, for tests that
+// signal it. Throws (failing the test) when it cannot start, so no test ever signals pid -1,
+// which would reach every process of the user.
+inline pid_t spawn_grainshock(const std::string& args, const std::string& err = "/dev/null") {
+  std::vector<std::string> argv_words = words(args);
+  argv_words.insert(argv_words.begin(), GRAINSHOCK_BINARY);
+  std::vector<char*> argv;
+  for (auto& w : argv_words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0)
+    throw std::runtime_error("cannot start " + argv_words[0] + ": posix_spawn " +
+                             std::to_string(rc));
+  return pid;
 }
 
 }  // namespace gs::test

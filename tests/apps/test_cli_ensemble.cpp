@@ -3,9 +3,7 @@
 // on stdout; bad input refused in one line with nothing written.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,6 +23,7 @@ namespace {
 using test::grainshock;
 using test::read_file;
 using test::scratch_dir;
+using test::spawn_grainshock;
 namespace fs = std::filesystem;
 
 // Small enough for a fraction of a second per realisation, long enough for a band to form.
@@ -209,24 +208,6 @@ TEST(CliEnsemble, ExponentsGoToStdoutEvenWhenQuiet) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_same_files(dir, again);
   EXPECT_TRUE(fs::is_directory(again / "realisations/000002"));
-}
-
-// Starts `grainshock ARGS` as a child with its output discarded.
-pid_t spawn_grainshock(const std::string& args) {
-  std::vector<std::string> words = {GRAINSHOCK_BINARY};
-  std::istringstream in(args);
-  for (std::string w; in >> w;) words.push_back(w);
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
 }
 
 std::size_t finished_count(const fs::path& rdir) {

@@ -1,10 +1,8 @@
 // `grainshock resume`: a run killed (-9) at random moments and resumed ends with the same files,
 // byte for byte, as one never interrupted; what cannot be resumed is refused in one line with
 // nothing touched. And the run files: run.toml reproduces its run, flag by flag.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -18,38 +16,15 @@
 
 #include "tests/apps/cli_test_util.h"
 
-extern char** environ;
-
 namespace gs {
 namespace {
 
 using test::grainshock;
 using test::read_file;
 using test::scratch_dir;
+using test::spawn_grainshock;
+using test::words;
 namespace fs = std::filesystem;
-
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> w;
-  for (std::string x; in >> x;) w.push_back(x);
-  return w;
-}
-
-pid_t spawn(const std::string& args) {
-  std::vector<std::string> argv = words(args);
-  argv.insert(argv.begin(), GRAINSHOCK_BINARY);
-  std::vector<char*> p;
-  for (auto& a : argv) p.push_back(a.data());
-  p.push_back(nullptr);
-  posix_spawn_file_actions_t io;
-  posix_spawn_file_actions_init(&io);
-  posix_spawn_file_actions_addopen(&io, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&io, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, p[0], &io, nullptr, p.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&io);
-  return pid;
-}
 
 // Every file of a folder, by relative path, with its bytes; timing.json holds wall times.
 std::map<std::string, std::string> files_of(const fs::path& dir) {
@@ -66,7 +41,7 @@ void kill_and_resume(const std::string& run_args, const fs::path& dir, int kills
                      std::mt19937& random) {
   std::string args = "run " + run_args + " --checkpoint-every 0.05 --out " + dir.string();
   for (int k = 0; k <= kills; ++k) {
-    const pid_t pid = spawn(args);
+    const pid_t pid = spawn_grainshock(args);
     if (k < kills) {
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
       while (!fs::exists(dir / "checkpoint.bin") && std::chrono::steady_clock::now() < deadline)
@@ -124,7 +99,7 @@ TEST(CliResume, StoppedBySigintAndResumed) {
   const std::string c = "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --quiet";
   const auto ref = scratch_dir("ref"), cut = scratch_dir("cut");
   ASSERT_EQ(grainshock("run " + c + " --out " + ref.string()).exit_code, 0);
-  const pid_t pid = spawn("run " + c + " --out " + cut.string());
+  const pid_t pid = spawn_grainshock("run " + c + " --out " + cut.string());
   while (!fs::exists(cut / "checkpoint.bin"))
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
@@ -242,7 +217,7 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
 TEST(CliRunFile, PhysicsFlagsKeepTheFig1Job) {
   auto toml_of = [](const std::string& args) {
     const auto dir = scratch_dir("fig1");
-    const pid_t pid = spawn("run --quiet " + args + " --out " + dir.string());
+    const pid_t pid = spawn_grainshock("run --quiet " + args + " --out " + dir.string());
     while (!fs::exists(dir / "run.toml") && waitpid(pid, nullptr, WNOHANG) == 0)
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     kill(pid, SIGKILL);

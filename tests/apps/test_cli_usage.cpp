@@ -1,9 +1,7 @@
 // The command line as a whole, through the binary: the exit-code table of apps/exit_code.h,
 // unknown words named with a suggestion, --version everywhere, and the bash completion script.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -11,8 +9,6 @@
 #include <thread>
 
 #include "tests/apps/cli_test_util.h"
-
-extern char** environ;
 
 namespace gs::test {
 namespace {
@@ -80,22 +76,6 @@ TEST(CliUsage, UnknownWordsAreNamedWithTheNearestValidOne) {
   EXPECT_EQ(grainshock("run --zzzzzz").err.find("did you mean"), std::string::npos);
 }
 
-// Child `grainshock ARGS...` with stdout to /dev/null and stderr to `err` (default /dev/null).
-pid_t spawn(std::vector<std::string> args, const std::string& err = "/dev/null") {
-  args.insert(args.begin(), GRAINSHOCK_BINARY);
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
-  return pid;
-}
-
 // Waits for `file` to appear (the child is past its set-up), then sends `sig`; the exit code.
 int interrupt_when(pid_t pid, const fs::path& file, int sig) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -152,8 +132,8 @@ TEST(CliUsage, ExitCodeTable) {
   // Interrupted: 130 for SIGINT and SIGTERM alike, with the files written so far complete.
   for (int sig : {SIGINT, SIGTERM}) {
     const fs::path out = dir / ("stopped_" + std::to_string(sig));
-    const pid_t pid = spawn({"run", "--dim", "3", "--particles", "20000", "--t-max", "1e7",
-                             "--quiet", "--out", out.string()});
+    const pid_t pid =
+        spawn_grainshock("run --dim 3 --particles 20000 --t-max 1e7 --quiet --out " + out.string());
     EXPECT_EQ(interrupt_when(pid, out / "timeseries.csv", sig), 130) << "signal " << sig;
     EXPECT_NE(read_file(out / "summary.json").find("\"interrupted\": true"), std::string::npos)
         << read_file(out / "summary.json");
@@ -166,9 +146,8 @@ TEST(CliUsage, ProgressLineWithoutTerminal) {
   const fs::path dir = scratch_dir("progress");
   fs::create_directories(dir);
   const fs::path err = dir / "stderr.txt";
-  const pid_t pid = spawn({"run", "--dim", "3", "--particles", "20000", "--t-max", "1e7", "--out",
-                           (dir / "run").string()},
-                          err.string());
+  const pid_t pid = spawn_grainshock(
+      "run --dim 3 --particles 20000 --t-max 1e7 --out " + (dir / "run").string(), err.string());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (read_file(err).find(" elapsed\n") == std::string::npos &&
          std::chrono::steady_clock::now() < deadline)
