@@ -211,21 +211,18 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
       cam = make_camera_3d(c, std::sqrt(r2) + r_max, shifted);
     }
   } else {
-    cam = make_camera_2d(fit, r_max, view);
+    // Fitted into the part of the picture left free, then widened to the whole picture.
+    View open_area = view;
+    open_area.width -= narrow_by;
+    open_area.height -= reserve_top;
+    cam = make_camera_2d(fit, r_max, open_area);
+    const double ppu = cam.pixels_per_unit();
     if (narrow_by > 0) {
-      View narrow = view;
-      narrow.width -= narrow_by;
-      cam = make_camera_2d(fit, r_max, narrow);
-      const double ppu = cam.pixels_per_unit();
       cam.width = view.width;
       cam.half_w = view.width / (2 * ppu);
       cam.origin.x() += shift_px / (2 * ppu);
     }
     if (reserve_top > 0) {
-      View low = view;
-      low.height -= reserve_top;
-      cam = make_camera_2d(fit, r_max, low);
-      const double ppu = cam.pixels_per_unit();
       cam.height = view.height;
       cam.half_h = view.height / (2 * ppu);
       cam.origin.y() += reserve_top / (2 * ppu);  // world y points up the picture
