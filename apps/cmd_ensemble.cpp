@@ -1,8 +1,6 @@
 // `grainshock ensemble`: M realisations over ranks (mpirun) and threads, averaged with errors and
 // fitted. Each realisation is written into OUT/realisations/ as it finishes, so the same command
 // again (or `grainshock resume OUT`) after a kill runs only the missing ones, to the same bytes.
-#include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
@@ -32,23 +30,6 @@ struct EnsembleOptions {
   bool force = false, quiet = false, per_realisation = false;
   int per_decade = 20, bins = 60, resamples = 1000;
   std::vector<double> snapshot_times, window;
-};
-
-// Held while the ensemble runs: a second process on the same folder (a requeued job, a repeated
-// command) is refused instead of running the same realisations. The kernel drops the lock when
-// the process dies, even by kill -9.
-class FolderLock {
- public:
-  explicit FolderLock(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY)) {
-    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
-      throw UserError(dir.string() + ": another grainshock is running this ensemble");
-  }
-  ~FolderLock() { ::close(fd_); }
-  FolderLock(const FolderLock&) = delete;
-  FolderLock& operator=(const FolderLock&) = delete;
-
- private:
-  int fd_;
 };
 
 // Runs what the folder's job still lacks (all of it for a new folder) and writes the results.
@@ -130,7 +111,9 @@ int run(const EnsembleOptions& o) {
                     "resume it with: grainshock resume " +
                     o.out + ", or use --force to start again");
   if (!resume) prepare_output_dir(o.out, o.force);
-  const FolderLock lock(dir);
+  // A second process on the folder (a requeued job, a repeated command) is refused instead of
+  // running the same realisations; the kernel drops the lock even on kill -9.
+  lock_output_dir(dir);
   if (!resume) {
     std::error_code ec;
     fs::remove_all(dir / "realisations", ec);  // --force starts again
@@ -163,7 +146,7 @@ int resume_ensemble(const fs::path& dir, int threads, bool quiet) {
   if (!holds_unfinished_ensemble(dir))
     throw UserError(dir.string() + ": the ensemble is finished (nothing to resume)");
   const EnsembleJob job = read_job(dir / "ensemble.toml");
-  const FolderLock lock(dir);
+  lock_output_dir(dir);
   return run_job(dir, job, threads, quiet, ranks);
 }
 

@@ -1,8 +1,13 @@
-// `grainshock resume DIR`: continues a run folder from its last checkpoint (apps/run_job.h).
+// `grainshock resume DIR`: continues a run folder from its last checkpoint (apps/run_job.h), or
+// an unfinished ensemble folder from its finished realisations (apps/ensemble_cli.h).
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <filesystem>
 #include <memory>
+#include <thread>
 
 #include "apps/commands.h"
+#include "apps/ensemble_cli.h"
 #include "apps/exit_code.h"
 #include "apps/run_job.h"
 
@@ -13,21 +18,34 @@ void add_resume_command(CLI::App& app) {
     std::string dir;
     bool quiet = false;
     double checkpoint_every = RunOptions{}.checkpoint_every;
+    int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   };
   auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
-      "resume", "Continue a run folder from its last checkpoint, after Ctrl-C or a kill");
-  sub->add_option("DIR", opt->dir, "The run folder (as given to run --out)")->required();
+      "resume",
+      "Continue a run folder from its last checkpoint, or an unfinished ensemble folder, after "
+      "Ctrl-C or a kill");
+  sub->add_option("DIR", opt->dir, "The run or ensemble folder (as given to --out)")->required();
   sub->add_flag("--quiet", opt->quiet, "Nothing on stderr but errors");
   add_checkpoint_option(*sub, opt->checkpoint_every);
+  sub->add_option("--threads", opt->threads, "Ensemble folders: worker threads")
+      ->capture_default_str();
   sub->footer(
       "The run goes on from its checkpoint with the settings of DIR/run.toml and ends with the "
       "same timeseries.csv, snapshots, pictures, movie and summary.json, byte for byte, as a "
       "run that was never stopped. Refused, with nothing in DIR touched: a folder without a "
       "checkpoint, a finished run, a run.toml that is not the checkpoint's, a checkpoint that "
-      "is truncated, corrupt or from another version or build.");
+      "is truncated, corrupt or from another version or build. An ensemble folder (with "
+      "ensemble.toml) runs only its missing realisations, to the same files as an ensemble "
+      "never stopped.");
   sub->callback([opt] {
-    RunOptions o = read_run_file(std::filesystem::path(opt->dir) / "run.toml");
+    const std::filesystem::path dir(opt->dir);
+    if (std::filesystem::exists(dir / "ensemble.toml")) {
+      const int rc = resume_ensemble(dir, opt->threads, opt->quiet);
+      if (rc != 0) throw Exit{rc};
+      return;
+    }
+    RunOptions o = read_run_file(dir / "run.toml");
     o.out = opt->dir;
     o.quiet = opt->quiet;
     o.checkpoint_every = opt->checkpoint_every;
