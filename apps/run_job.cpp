@@ -18,9 +18,8 @@
 #include "sim/atomic_file.h"
 #include "sim/error.h"
 #include "sim/format.h"
-#include "sim/stop.h"
 #include "sim/snapshot_file.h"
-#include "sim/xyz.h"
+#include "sim/stop.h"
 
 namespace gs::app {
 namespace {
@@ -144,7 +143,8 @@ bool write_pictures(const fs::path& dir, const RunOptions& o) {
   fs::create_directories(dir / "frames");
   std::vector<Snapshot> snaps;
   for (double t : snapshot_times(o.plan))
-    snaps.push_back(read_snapshot((dir / "snapshots" / snapshot_name(t)).string()));
+    snaps.push_back(
+        read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
   render::Renderer renderer;
   render::Style style = picture_style(o.plan.physics);
   style.range = common_range(snaps, style);
@@ -175,7 +175,9 @@ bool write_elastic_comparison(const fs::path& dir, const RunOptions& o) {
     if (stop_requested()) return false;
   }
   const Snapshot s = sim->snapshot();
-  write_xyz((dir / "snapshots" / ("elastic_" + snapshot_name(c.t_max))).string(), s);
+  write_snapshot(
+      (dir / "snapshots" / ("elastic_" + snapshot_name(c.t_max, o.plan.snapshots.format))).string(),
+      s, o.plan.snapshots);
   fs::create_directories(dir / "frames");
   render::Renderer renderer;
   render::write_png((dir / "frames" / png_name("elastic_", c.t_max)).string(),
@@ -205,6 +207,27 @@ void add_run_flags(CLI::App& sub, RunOptions& o) {
       ->capture_default_str();
   sub.add_option("--snapshot-times", o.plan.snapshot_times, "Write snapshots at these times")
       ->delimiter(',');
+  sub.add_option_function<std::string>(
+         "--snapshot-format",
+         [&o](const std::string& v) {
+           if (v != "xyz" && v != "ovito-xyz" && v != "gsd")
+             throw CLI::ValidationError("--snapshot-format",
+                                        "'" + v + "' is not xyz, ovito-xyz or gsd");
+           o.plan.snapshots.format = parse_snapshot_format(v);
+         },
+         "xyz: extended XYZ for ASE (OVITO shows 2D as a thin layer); ovito-xyz: 2D as OVITO's "
+         "2D form (pos:R:2, which ASE cannot read); gsd: HOOMD GSD, binary, 32-bit floats")
+      ->option_text("xyz|ovito-xyz|gsd (xyz)");
+  sub.add_option_function<std::string>(
+         "--snapshot-particles",
+         [&o](const std::string& v) {
+           if (v != "all" && v != "active")
+             throw CLI::ValidationError("--snapshot-particles", "'" + v + "' is not all or active");
+           parse_snapshot_particles(v, o.plan.snapshots);
+         },
+         "all, or active: only the particles that have collided (pictures and fronts, not "
+         "packing, which needs the gas at rest)")
+      ->option_text("all|active (all)");
   sub.add_flag("--png", o.png,
                "Draw every snapshot into frames/*.png (colour = speed) and overlay them all");
   sub.add_flag("--compare-elastic", o.compare_elastic,
@@ -233,6 +256,8 @@ std::string run_toml(const RunOptions& o) {
     << "# Again: grainshock run --config run.toml --out NEW; continue: grainshock resume DIR\n"
     << to_toml(o.plan.physics) << "per-decade = " << o.plan.per_decade << "\n"
     << "sample-every = " << format_double(o.plan.sample_every) << "\n"
+    << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
+    << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
     << "snapshot-times = " << times_toml(o.plan.snapshot_times) << "\n"
     << "png = " << (o.png ? "true" : "false") << "\n"
     << "compare-elastic = " << (o.compare_elastic ? "true" : "false") << "\n"
@@ -284,7 +309,7 @@ int run_job(const RunOptions& o, bool resume) {
     const double t = loop->simulation().time();
     const auto scheduled = snapshot_times(o.plan);
     if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
-      fs::remove(dir / "snapshots" / snapshot_name(t));
+      fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
   } else {
     dir = prepare_output_dir(o.out, o.force, kRunOutputs);
     lock_output_dir(dir);
@@ -311,7 +336,9 @@ int run_job(const RunOptions& o, bool resume) {
     progress.done();
     if (stopped) {  // a look at the data may want the moment too; a resume removes it
       const Snapshot s = loop->simulation().snapshot();
-      write_xyz((dir / "snapshots" / snapshot_name(s.info.time)).string(), s);
+      write_snapshot(
+          (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
+          o.plan.snapshots);
     } else {
       loop->set_stage(kAfterSampling);
       loop->write_checkpoint();

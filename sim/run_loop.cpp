@@ -8,7 +8,6 @@
 #include "sim/error.h"
 #include "sim/format.h"
 #include "sim/stop.h"
-#include "sim/xyz.h"
 
 namespace gs {
 namespace {
@@ -37,6 +36,8 @@ std::string header_line(const Recorder& r) {
 void check_plan(const RunPlan& plan, int snapshot_copies) {
   const PhysicsConfig& c = plan.physics;
   validate(c);
+  if (plan.snapshots.format == SnapshotFormat::Gsd && c.dim == 1)
+    throw UserError("--snapshot-format gsd holds 2D and 3D systems only; use xyz in 1D");
   for (double t : plan.snapshot_times)
     if (!(t > 0 && t <= c.t_max))
       throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
@@ -76,8 +77,8 @@ std::string time_tag(double t) {
   return format_number(t);
 }
 
-std::string snapshot_name(double t) {
-  return "t_" + time_tag(t) + ".xyz";
+std::string snapshot_name(double t, SnapshotFormat format) {
+  return "t_" + time_tag(t) + snapshot_extension(format);
 }
 
 std::filesystem::path RunLoop::checkpoint_path(const std::filesystem::path& dir) {
@@ -196,7 +197,8 @@ bool RunLoop::run(double until) {
         std::abs(snaps_[next_snap_] - t) <= 1e-12 * std::max(1.0, t)) {
       const double s0 = wall_now();
       sim_->snapshot(snapshot_);
-      write_xyz((dir_ / "snapshots" / snapshot_name(t)).string(), snapshot_);
+      write_snapshot((dir_ / "snapshots" / snapshot_name(t, plan_.snapshots.format)).string(),
+                     snapshot_, plan_.snapshots, kept_);
       ++next_snap_;
       timing_.snapshots += wall_now() - s0;
     }

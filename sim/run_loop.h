@@ -15,6 +15,7 @@
 #include "sim/config.h"
 #include "sim/engine.h"
 #include "sim/recorder.h"
+#include "sim/snapshot_writer.h"
 
 namespace gs {
 
@@ -24,6 +25,7 @@ struct RunPlan {
   int per_decade = 20;                 // of the logarithmic sample grid
   double sample_every = 0;             // a linear grid too; 0: none
   std::vector<double> snapshot_times;  // t-max always gets one
+  SnapshotWriteOptions snapshots;      // their format and particles
 };
 
 // At most this many rows of timeseries.csv (about 2 GB of text).
@@ -36,8 +38,10 @@ void check_plan(const RunPlan& plan, int snapshot_copies = 1);
 
 std::vector<double> sample_times(const RunPlan& plan);
 std::vector<double> snapshot_times(const RunPlan& plan);
-// "t_<time>.xyz", whole times as plain integers (t_100000, not t_1e+05) so that names sort.
-std::string snapshot_name(double t);
+// "t_<time>.xyz" (or .gsd), whole times as plain integers (t_100000, not t_1e+05) so that
+// names sort. One file per snapshot time, also for GSD: a resume then never has to cut back a
+// multi-frame file, and each file is a whole record of its moment.
+std::string snapshot_name(double t, SnapshotFormat format = SnapshotFormat::Xyz);
 std::string time_tag(double t);
 
 struct RunTiming {
@@ -96,7 +100,7 @@ class RunLoop {
   std::size_t next_ = 0, next_snap_ = 0;
   std::uint32_t stage_ = 0;
   AppendFile csv_;
-  Snapshot snapshot_;  // reused
+  Snapshot snapshot_, kept_;  // reused (kept_: the active particles of snapshot_)
   RunTiming timing_;
   double last_checkpoint_ = 0;  // wall clock of the last one, seconds of steady_clock
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "sim/error.h"
+#include "sim/gsd.h"
 #include "sim/lammps_dump.h"
 #include "sim/text_scan.h"
 #include "sim/xyz.h"
@@ -63,10 +64,14 @@ namespace {
 
 std::unique_ptr<FrameSource> open_source(MappedFile file) {
   const std::string_view b = file.bytes();
+  if (is_gsd(b)) return open_gsd(std::move(file));
   std::size_t i = 0;
   while (i < b.size() && is_space(b[i])) ++i;
   if (b.substr(i).starts_with("ITEM:")) return open_lammps_dump(std::move(file));
   if (i == b.size()) throw UserError("snapshot '" + file.path() + "' is empty");
+  if (std::any_of(b.begin(), b.begin() + std::min<std::size_t>(b.size(), 64),
+                  [](char c) { return c == '\0'; }))
+    throw UserError("snapshot '" + file.path() + "' is binary but not GSD (bad magic number)");
   std::size_t j = i;
   while (j < b.size() && b[j] != '\n') ++j;
   std::string_view first = b.substr(i, j - i);

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "sim/atomic_file.h"
@@ -414,62 +415,112 @@ void append_number(std::string& out, double x) {
   out.append(buf, end);
 }
 
+// Particle lines [begin, end) of the file, numbers in shortest round-trip form.
+std::string particle_lines(const Snapshot& s, std::size_t begin, std::size_t end, int pos_count,
+                           const std::vector<const Column*>& extra) {
+  std::string out;
+  out.reserve((end - begin) * (32 + 20 * pos_count * (s.has_velocity() ? 2 : 1)));
+  char buf[32];
+  auto num = [&](double x) {
+    out += ' ';
+    const auto [e, ec] = std::to_chars(buf, buf + sizeof buf, x);
+    out.append(buf, e);
+  };
+  for (std::size_t i = begin; i < end; ++i) {
+    out += 'X';  // ASE's dummy element (mass 1): readers that map species to elements accept it
+    for (int k = 0; k < pos_count; ++k) num(s.position[i][k]);
+    if (s.has_velocity())
+      for (int k = 0; k < pos_count; ++k) num(s.velocity[i][k]);
+    num(s.radius[i]);
+    out += s.active[i] ? " 1" : " 0";
+    if (!s.first_collision.empty()) num(s.first_collision[i]);
+    for (const Column* c : extra) num(c->values[i]);
+    out += '\n';
+  }
+  return out;
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> open_xyz(MappedFile file) {
   return std::make_unique<XyzSource>(std::move(file));
 }
 
-void write_xyz(const std::string& path, const Snapshot& s) {
+void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
   const std::size_t n = s.size();
+  const int dim = s.info.dim;
+  GS_CHECK(dim >= 1 && dim <= 3);
   GS_CHECK(s.velocity.empty() || s.velocity.size() == n);
   GS_CHECK(s.radius.size() == n && s.active.size() == n);
   GS_CHECK(s.first_collision.empty() || s.first_collision.size() == n);
+  const bool ovito = flavour == XyzFlavour::Ovito;
+  const int pos_count = ovito ? dim : 3;
 
-  std::string out;
-  out.reserve(64 + n * (s.has_velocity() ? 120 : 60));
-  out += std::to_string(n);
-  out += "\nLattice=\"";
-  const double side = s.info.box.maxCoeff();
+  std::string head = std::to_string(n);
+  // OVITO takes a cell only when all three vectors are non-zero: the axes beyond the dimension
+  // get a unit edge (one diameter), not periodic (pbc F), which ASE keeps as the cell too.
+  head += "\nLattice=\"";
   for (int k = 0; k < 9; ++k) {
-    if (k) out += ' ';
+    if (k) head += ' ';
     if (k % 4 == 0)
-      append_number(out, s.info.box[k / 4] > 0 ? s.info.box[k / 4] : side);
+      append_number(head, k / 4 < dim && s.info.box[k / 4] > 0 ? s.info.box[k / 4] : 1.0);
     else
-      out += '0';
+      head += '0';
   }
-  out += "\" Properties=species:S:1:pos:R:3";
-  if (s.has_velocity()) out += ":velo:R:3";
-  out += ":radius:R:1:active:I:1";
-  if (!s.first_collision.empty()) out += ":first_collision:R:1";
-  out += " Time=";
-  append_number(out, s.info.time);
-  out += " pbc=\"T T T\" Dim=" + std::to_string(s.info.dim);
+  head += '"';
+  if (s.info.origin != Eigen::Vector3d::Zero()) {
+    head += " Origin=\"";
+    for (int k = 0; k < 3; ++k) {
+      if (k) head += ' ';
+      append_number(head, s.info.origin[k]);
+    }
+    head += '"';
+  }
+  const std::string count = std::to_string(pos_count);
+  head += " Properties=species:S:1:pos:R:" + count;
+  // ASE's get_velocities() divides its momenta by the masses (1 for X); OVITO maps velo.
+  if (s.has_velocity()) head += (ovito ? ":velo:R:" : ":momenta:R:") + count;
+  head += ":radius:R:1:active:I:1";
+  if (!s.first_collision.empty()) head += ":first_collision:R:1";
+  std::vector<const Column*> extra;
+  for (const auto& c : s.columns) {
+    GS_CHECK(c.values.size() == n);
+    std::string name = c.name;  // a property name is one token without ':'
+    for (char& ch : name)
+      if (ch == ':' || is_space(ch) || ch == '"') ch = '_';
+    head += ":" + name + ":R:1";
+    extra.push_back(&c);
+  }
+  head += " Time=";
+  append_number(head, s.info.time);
+  head += dim == 3 ? " pbc=\"T T T\"" : dim == 2 ? " pbc=\"T T F\"" : " pbc=\"T F F\"";
+  head += " Dim=" + std::to_string(dim);
   auto opt = [&](const char* key, const std::optional<double>& v) {
     if (!v) return;
-    out += ' ';
-    out += key;
-    out += '=';
-    append_number(out, *v);
+    head += ' ';
+    head += key;
+    head += '=';
+    append_number(head, *v);
   };
+  if (s.info.step) head += " Timestep=" + std::to_string(*s.info.step);
   opt("Density", s.info.density);
   opt("Restitution", s.info.restitution);
   opt("Cutoff", s.info.cutoff);
   opt("Speed", s.info.speed);
-  if (s.info.seed) out += " Seed=" + std::to_string(*s.info.seed);
-  out += '\n';
-  for (std::size_t i = 0; i < n; ++i) {
-    out += 'X';  // ASE's dummy element: readers that map species to elements accept it
-    for (int k = 0; k < 3; ++k) out += ' ', append_number(out, s.position[i][k]);
-    if (s.has_velocity())
-      for (int k = 0; k < 3; ++k) out += ' ', append_number(out, s.velocity[i][k]);
-    out += ' ';
-    append_number(out, s.radius[i]);
-    out += s.active[i] ? " 1" : " 0";
-    if (!s.first_collision.empty()) out += ' ', append_number(out, s.first_collision[i]);
-    out += '\n';
-  }
+  if (s.info.seed) head += " Seed=" + std::to_string(*s.info.seed);
+  head += '\n';
 
+  // Formatting the numbers is the cost: two threads format halves of the particles (the machine
+  // has two cores), then the pieces go out in order.
+  const std::size_t half = n > 100000 ? n / 2 : n;
+  std::string second;
+  std::thread helper;
+  if (half < n)
+    helper = std::thread([&] { second = particle_lines(s, half, n, pos_count, extra); });
+  std::string out = std::move(head);
+  out += particle_lines(s, 0, half, pos_count, extra);
+  if (helper.joinable()) helper.join();
+  out += second;
   write_file_atomic(path, out);
 }
 

@@ -80,6 +80,9 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
       "--dim 3 --particles 20000 --t-max 20000 --restitution 0.3 --snapshot-times 500",
       "--dim 2 --particles 3000 --t-max 300 --initial thermal --restitution 0.95",
       "--dim 3 --particles 3000 --t-max 150 --initial thermal --restitution 0.95 --per-decade 40",
+      // One GSD file per snapshot time, whose bytes depend only on the state written.
+      "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times 100,10000 "
+      "--snapshot-format gsd --snapshot-particles active",
   };
   int n = 0;
   for (const std::string& c : cases) {
@@ -193,7 +196,9 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
       "--width 64 --height 48",
       "--dim 1 --particles 300 --lattice 2 --restitution 0 --t-max 400 --sample-every 50",
       "--dim 3 --particles 1000 --initial thermal --temperature 0.5 --restitution 0.9 "
-      "--t-max 2 --snapshot-times 1",
+      "--t-max 2 --snapshot-times 1 --snapshot-format gsd --snapshot-particles active",
+      "--dim 2 --particles 400 --t-max 30 --snapshot-times 10 --snapshot-format ovito-xyz --png "
+      "--width 32 --height 32",
   };
   int n = 0;
   for (const std::string& args : runs) {
