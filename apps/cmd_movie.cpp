@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
@@ -104,8 +105,17 @@ void add_movie_command(CLI::App& app) {
       }
       // Every file is read (and checked) before the folder is made.
       StoredMovie m = prepare_stored_movie(opt->files, opt->movie);
+      std::error_code ec;
+      const bool existed = std::filesystem::exists(opt->out, ec);
       const auto dir = prepare_output_dir(opt->out, opt->force);
-      const FrontMovieResult r = write_stored_movie(m, dir);
+      FrontMovieResult r;
+      try {
+        r = write_stored_movie(m, dir);
+      } catch (...) {
+        // A file that fails now (changed since the first pass) leaves no folder behind either.
+        if (!existed) std::filesystem::remove(dir, ec);
+        throw;
+      }
       if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
       return;
     }

@@ -25,8 +25,8 @@
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/format.h"
-#include "sim/stop.h"
 #include "sim/snapshot_file.h"
+#include "sim/stop.h"
 
 namespace gs::app {
 namespace {
@@ -91,6 +91,7 @@ bool for_each_frame(Simulation& sim, const std::vector<double>& times, Progress&
 // front is (unwrapped), and the box the renderer's fitted framing will use.
 struct FrameScan {
   double time = 0;
+  std::int64_t step = 0;  // LAMMPS and HOOMD files: orders frames of equal (or no) time
   int dim = 2;
   Eigen::Vector3d box = Eigen::Vector3d::Zero();  // edges of the periodic box
   bool any_active = false;
@@ -103,6 +104,7 @@ struct FrameScan {
 FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   FrameScan f;
   f.time = s.info.time;
+  f.step = s.info.step.value_or(0);
   f.dim = s.info.dim;
   f.box = s.info.box;
   f.any_active = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
@@ -286,45 +288,83 @@ class LiveFrames final : public Frames {
   Snapshot snap_;  // reused frame after frame
 };
 
-// Stored snapshot files in a chosen order. A second thread reads frame k + 1 while frame k is
-// drawn; it waits for the slot to empty first, so at most two frames are in memory at once.
+// Every frame of stored snapshot files in a chosen order. A second thread reads frame k + 1 while
+// frame k is drawn; it waits for the slot to empty first, so at most two frames are in memory
+// at once. The first pass walks the files in the order given, every frame of each, and learns
+// the frames; later passes visit them in the order reorder() set, keeping the last file opened
+// (its frame index) for the frames after it.
 class StoredFrames final : public Frames {
  public:
-  explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {
-    for (std::size_t k = 0; k < paths_.size(); ++k) order_.push_back(k);
+  explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {}
+  std::size_t size() const override { return entries_.size(); }
+  // "'file'", or "frame 3 of 'file'" for a file of several frames (frames count from 0).
+  std::string name(std::size_t k) const {
+    const Entry& e = entries_[k];
+    const std::string file = "'" + paths_[e.file] + "'";
+    return counts_[e.file] == 1 ? file : "frame " + std::to_string(e.frame) + " of " + file;
   }
-  std::size_t size() const override { return order_.size(); }
-  const std::string& path(std::size_t k) const { return paths_[order_[k]]; }
   // Reorders the frames: frame k becomes the one that was frame `order[k]`.
   void reorder(const std::vector<std::size_t>& order) {
-    std::vector<std::size_t> o;
-    for (std::size_t k : order) o.push_back(order_[k]);
-    order_ = std::move(o);
+    std::vector<Entry> e;
+    for (std::size_t k : order) e.push_back(entries_[k]);
+    entries_ = std::move(e);
   }
   bool each(Progress& progress, const char* pass,
             const std::function<void(std::size_t, const Snapshot&)>& visit) override {
+    const bool first = counts_.empty();
+    struct Item {
+      Entry entry;
+      std::size_t count;  // frames in its file
+      double done;        // fraction of the pass once this frame is drawn
+      Snapshot snap;
+    };
     std::mutex m;
     std::condition_variable cv;
-    std::optional<Snapshot> slot;
+    std::optional<Item> slot;
     std::exception_ptr error;
     bool quit = false;
+    // Hands one frame to the drawing thread; false when the pass is over.
+    auto put = [&](Item item) {
+      std::unique_lock lock(m);
+      cv.wait(lock, [&] { return !slot || quit; });
+      if (quit) return false;
+      slot = std::move(item);
+      cv.notify_all();
+      return true;
+    };
+    // A file's frames, counted by the first pass: a file that changed since reads as an error.
+    std::vector<std::size_t> counted = counts_;
+    auto open = [&](std::size_t file) {
+      SnapshotFile f = open_snapshots(paths_[file]);
+      if (!first && f.frame_count() != counted[file])
+        throw UserError(
+            "snapshot '" + paths_[file] + "' changed while the movie was made: it had " +
+            std::to_string(counted[file]) + " frames, it has " + std::to_string(f.frame_count()));
+      return f;
+    };
     std::thread reader([&] {
-      for (std::size_t k = 0; k < order_.size(); ++k) {
-        {
-          std::unique_lock lock(m);
-          cv.wait(lock, [&] { return !slot || quit; });
-          if (quit) return;
+      try {
+        if (first) {
+          for (std::size_t file = 0; file < paths_.size(); ++file) {
+            const SnapshotFile f = open(file);
+            const std::size_t n = f.frame_count();
+            if (n == 0) throw UserError("snapshot '" + paths_[file] + "' holds no frame");
+            for (std::size_t j = 0; j < n; ++j)
+              if (!put({{file, j}, n, (file + (j + 1.0) / n) / paths_.size(), read(f, j)})) return;
+          }
+        } else {
+          std::optional<SnapshotFile> f;
+          std::size_t open_file = 0;
+          for (std::size_t k = 0; k < entries_.size(); ++k) {
+            const Entry e = entries_[k];
+            if (!f || open_file != e.file) f.reset(), f.emplace(open(e.file)), open_file = e.file;
+            if (!put({e, counted[e.file], (k + 1.0) / entries_.size(), read(*f, e.frame)})) return;
+          }
         }
-        try {
-          Snapshot s = read_snapshot(path(k));
-          std::lock_guard lock(m);
-          slot = std::move(s);
-        } catch (...) {
-          std::lock_guard lock(m);
-          error = std::current_exception();
-          cv.notify_all();
-          return;
-        }
+        put({{0, kEnd}, 0, 1, {}});
+      } catch (...) {
+        std::lock_guard lock(m);
+        error = std::current_exception();
         cv.notify_all();
       }
     });
@@ -342,29 +382,52 @@ class StoredFrames final : public Frames {
         t.join();
       }
     } join{reader, m, cv, quit};
-    for (std::size_t k = 0; k < order_.size(); ++k) {
-      Snapshot s;
+    for (std::size_t k = 0;; ++k) {
+      Item item;
       {
         std::unique_lock lock(m);
         cv.wait(lock, [&] { return slot || error; });
         if (!slot) std::rethrow_exception(error);
-        s = std::move(*slot);
+        item = std::move(*slot);
         slot.reset();
       }
       cv.notify_all();
-      visit(k, s);
+      if (item.entry.frame == kEnd) return true;
+      if (first) {
+        entries_.push_back(item.entry);
+        if (item.entry.file == counts_.size()) counts_.push_back(item.count);
+      }
+      visit(k, item.snap);
       char what[160];
-      std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g", pass, k + 1, order_.size(),
-                    s.info.time);
-      progress.update(double(k + 1) / order_.size(), what);
+      if (first)
+        std::snprintf(what, sizeof what, "%s: frame %zu, t = %.4g", pass, k + 1,
+                      item.snap.info.time);
+      else
+        std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g", pass, k + 1,
+                      entries_.size(), item.snap.info.time);
+      progress.update(item.done, what);
       if (stop_requested()) return false;
     }
-    return true;
   }
 
  private:
+  struct Entry {
+    std::size_t file, frame;
+  };
+  static constexpr std::size_t kEnd = std::size_t(-1);  // the frame of the item ending a pass
+  // Frame j; a reader's error (which names the file and line) also names the frame.
+  static Snapshot read(const SnapshotFile& f, std::size_t j) {
+    try {
+      return f.read(j);
+    } catch (const UserError& e) {
+      if (f.frame_count() == 1) throw;
+      throw UserError(std::string(e.what()) + " (frame " + std::to_string(j) + " of " +
+                      std::to_string(f.frame_count()) + ")");
+    }
+  }
   std::vector<std::string> paths_;
-  std::vector<std::size_t> order_;
+  std::vector<Entry> entries_;       // frame k of the movie is frame entries_[k].frame of a file
+  std::vector<std::size_t> counts_;  // frames in each file, as the first pass found them
 };
 
 // The first pass: what every frame needs of all the others (range, camera path).
@@ -383,9 +446,40 @@ void finish_first_pass(Prepared& p, int dim, double fps) {
                           p.plan.view.margin, std::max(1, static_cast<int>(fps / 2)));
 }
 
+// The PNGs of --keep-frames in DIR/frames. Made before the movie starts, so that an unwritable
+// folder is reported before any work; removed again (the folder too, if made here) unless the
+// movie is kept, so that a movie that fails leaves the output folder as it was.
+class KeptFrames {
+ public:
+  KeptFrames(const std::filesystem::path& dir, bool keep) : dir_(dir / "frames"), keep_(keep) {
+    if (keep_) made_ = std::filesystem::create_directories(dir_);
+  }
+  ~KeptFrames() {
+    if (kept_) return;
+    std::error_code ec;
+    for (const auto& f : written_) std::filesystem::remove(f, ec);
+    if (made_) std::filesystem::remove(dir_, ec);
+  }
+  KeptFrames(const KeptFrames&) = delete;
+  KeptFrames& operator=(const KeptFrames&) = delete;
+  bool on() const { return keep_; }
+  void write(std::size_t k, const render::Image& img, const render::PngText& text) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05zu.png", k);
+    written_.push_back(dir_ / name);
+    render::write_png(written_.back().string(), img, text);
+  }
+  void keep() { kept_ = true; }
+
+ private:
+  std::filesystem::path dir_;
+  bool keep_ = false, made_ = false, kept_ = false;
+  std::vector<std::filesystem::path> written_;
+};
+
 // The second pass, the one frame loop of every movie: aims the camera, renders, encodes.
 FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovieOptions& o,
-                             const std::filesystem::path& dir, render::MovieWriter& movie,
+                             KeptFrames& pngs, render::MovieWriter& movie,
                              render::Renderer& renderer, const char* pass) {
   const render::Style& style = p.plan.style;
   render::View view = p.plan.view;
@@ -410,12 +504,9 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       if (o.orbit != 0) view.azimuth = o.azimuth + o.orbit * (n > 1 ? double(k) / (n - 1) : 0.0);
       render::Image img = renderer.render(snap, style, view);
       render_s += seconds_since(t0);
-      if (o.keep_frames) {
+      if (pngs.on()) {
         t0 = std::chrono::steady_clock::now();
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05zu.png", k);
-        render::write_png((dir / "frames" / name).string(), img,
-                          render::png_text(snap.info, snap.size()));
+        pngs.write(k, img, render::png_text(snap.info, snap.size()));
         png_s += seconds_since(t0);
       }
       t0 = std::chrono::steady_clock::now();
@@ -430,17 +521,18 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
     movie.finish();
   else
     movie.discard();  // a movie without a frame would only pretend to be one
+  pngs.keep();
   encode_s += seconds_since(t0);
   if (!o.quiet) {
     if (written > 0) {
-      char pngs[48] = "";
-      if (o.keep_frames) std::snprintf(pngs, sizeof pngs, ", write PNGs %.3g s", png_s);
+      char png_note[48] = "";
+      if (o.keep_frames) std::snprintf(png_note, sizeof png_note, ", write PNGs %.3g s", png_s);
       std::fprintf(stderr,
                    "grainshock: %s: %lld frames (%s, %dx%d) in %s; render %.3g s, wait for the "
                    "encoder %.3g s%s\n",
                    stopped ? "interrupted" : "finished", static_cast<long long>(written),
                    movie.encoder_name().c_str(), movie.encoded_width(), movie.encoded_height(),
-                   movie.path().c_str(), render_s, encode_s, pngs);
+                   movie.path().c_str(), render_s, encode_s, png_note);
     } else
       std::fprintf(stderr, "grainshock: interrupted before the first frame; no movie written\n");
   }
@@ -473,7 +565,7 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
   Prepared p;
   p.plan = make_live_plan(physics, o);
   LiveFrames frames(physics, frame_times(physics, o));
-  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
+  KeptFrames pngs(dir, o.keep_frames);
   // Opened now so that an unwritable folder is reported before any work.
   render::MovieWriter movie(dir / "movie.mp4", o.movie);
   render::Renderer renderer(p.plan.backend);
@@ -489,7 +581,7 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
     progress.done();
     finish_first_pass(p, physics.dim, o.movie.fps);
   }
-  return render_pass(frames, p, o, dir, movie, renderer,
+  return render_pass(frames, p, o, pngs, movie, renderer,
                      p.scans.empty() ? "movie" : "pass 2 of 2 (movie)");
 }
 
@@ -521,18 +613,18 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   std::vector<FrameScan> scans;
   p.stopped = !frames.each(
       progress, "pass 1 of 2 (order, range, camera)", [&](std::size_t k, const Snapshot& s) {
-        const std::string& file = frames.path(k);
+        const std::string name = frames.name(k);
         if (k == 0) {
-          p.plan.style.field = render::choose_field(o.colour_by, s, file);
+          p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
           p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
           render::check_style(p.plan.style);
-          check_orbit(s.info.dim, o, "'" + file + "'");
+          check_orbit(s.info.dim, o, name);
           settle_range(p.plan, s.info.dim);
         } else {
           const FrameScan& first = scans.front();
           if (s.info.dim != first.dim)
-            throw UserError("'" + file + "' is " + std::to_string(s.info.dim) + "D but '" +
-                            frames.path(0) + "' is " + std::to_string(first.dim) +
+            throw UserError(name + " is " + std::to_string(s.info.dim) + "D but " + frames.name(0) +
+                            " is " + std::to_string(first.dim) +
                             "D: a movie's frames share one dimension");
           if ((s.info.box - first.box).cwiseAbs().maxCoeff() >
               1e-9 * std::max(1.0, first.box.maxCoeff())) {
@@ -541,25 +633,24 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
               for (int a = 1; a < s.info.dim; ++a) e += " x " + format_number(b[a]);
               return e;
             };
-            throw UserError("'" + file + "' has box " + edges(s.info.box) + " but '" +
-                            frames.path(0) + "' has " + edges(first.box) +
-                            ": a movie's frames share one box");
+            throw UserError(name + " has box " + edges(s.info.box) + " but " + frames.name(0) +
+                            " has " + edges(first.box) + ": a movie's frames share one box");
           }
         }
         if (s.size() > 0 && render::needs_velocity(p.plan.style.field) && !s.has_velocity())
-          throw UserError("snapshot '" + file +
-                          "' has no velocities (no velo property); cannot "
-                          "colour by " +
+          throw UserError(name + " has no velocities (no velo property); cannot colour by " +
                           render::field_name(p.plan.style.field));
         scans.push_back(scan(s, p.plan.style, p.plan.need_range));
       });
   progress.done();
   if (p.stopped) return StoredMovie(std::move(impl));
-  // Frames in order of their Time; files of equal time keep the order they were given in.
+  // Frames in order of their Time, then of their time step (a LAMMPS dump without ITEM: TIME
+  // has only steps); frames of equal time and step keep the order they were given in.
   std::vector<std::size_t> order(scans.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return scans[a].time < scans[b].time; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::pair{scans[a].time, scans[a].step} < std::pair{scans[b].time, scans[b].step};
+  });
   frames.reorder(order);
   for (std::size_t k : order) p.scans.push_back(scans[k]);
   finish_first_pass(p, p.scans.front().dim, o.movie.fps);
@@ -569,10 +660,10 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
 FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir) {
   const FrontMovieOptions& o = m.impl_->options;
   Prepared& p = m.impl_->prepared;
-  if (o.keep_frames) std::filesystem::create_directories(dir / "frames");
+  KeptFrames pngs(dir, o.keep_frames);
   render::MovieWriter movie(dir / "movie.mp4", o.movie);
   render::Renderer renderer(p.plan.backend);
-  return render_pass(m.impl_->frames, p, o, dir, movie, renderer, "pass 2 of 2 (movie)");
+  return render_pass(m.impl_->frames, p, o, pngs, movie, renderer, "pass 2 of 2 (movie)");
 }
 
 }  // namespace gs::app

@@ -65,12 +65,14 @@ class StoredMovie {
   std::unique_ptr<Impl> impl_;
 };
 
-// Reads every file once. UserError naming the file for one that cannot be read, has no
-// velocities when coloured by a speed, lacks the --color-by field (listing those it has), or
-// differs from the first file in dimension or box; and for --orbit on 2D frames.
+// Reads every frame of every file once (a file of several frames gives several movie frames).
+// UserError naming the file (and the frame, in a file of several) for one that cannot be read,
+// has no velocities when coloured by a speed, lacks the --color-by field (listing those it has),
+// or differs from the first frame in dimension or box; and for --orbit on 2D frames.
 StoredMovie prepare_stored_movie(const std::vector<std::string>& files, const FrontMovieOptions& o);
-// Writes dir/movie.mp4 (dir must exist), reading each file again, one ahead on a second thread.
-// A file that fails now ends it with the error and no movie.
+// Writes dir/movie.mp4 (dir must exist), reading each frame again, one ahead on a second thread.
+// A frame that fails now (its file changed since) ends it with the error, and what it wrote
+// (the partial movie, --keep-frames PNGs and their folder) is removed again.
 FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir);
 
 }  // namespace gs::app

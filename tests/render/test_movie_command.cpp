@@ -10,11 +10,14 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "render/png.h"
+#include "sim/snapshot_file.h"
 #include "tests/apps/cli_test_util.h"
 #include "tests/render/movie_decode.h"
 
@@ -173,6 +176,26 @@ std::vector<std::string> stored_snapshots(const std::string& name, const std::st
   return files;
 }
 
+// The --keep-frames PNGs of `dir` carry these times, frame by frame.
+void expect_kept_frame_times(const fs::path& dir, const std::vector<double>& want) {
+  for (std::size_t k = 0; k < want.size(); ++k)
+    EXPECT_NEAR(png_time(dir / "frames" / ("frame_0000" + std::to_string(k) + ".png")), want[k],
+                1e-9);
+}
+
+// The decoded 320x240 frame `d.rgb` is `snapshot` as `grainshock render` draws it with the same
+// camera and style, and not `other`; the bound is test_movie.cpp's (yuv420p round trip).
+void expect_frame_is_render(const Decoded& d, const std::string& snapshot, const std::string& other,
+                            const fs::path& dir) {
+  const auto png = dir / "render_same.png", miss = dir / "render_other.png";
+  const std::string args = " --framing box --width 320 --height 240 --out ";
+  ASSERT_EQ(test::grainshock("render " + snapshot + args + png.string()).exit_code, 0);
+  ASSERT_EQ(test::grainshock("render " + other + args + miss.string()).exit_code, 0);
+  const double same = psnr(d.rgb, read_png(png.string()), 320, 240);
+  EXPECT_GE(same, 30.0);
+  EXPECT_LT(psnr(d.rgb, read_png(miss.string()), 320, 240), same - 3);
+}
+
 TEST(MovieCommand, FromStoredSnapshotsInOrderOfTimeMatchingThePngRenderer) {
   const auto files = stored_snapshots("stored_run", std::string(kSmallRun) + " --t-max 200");
   const auto dir = fresh_dir("stored");
@@ -186,19 +209,68 @@ TEST(MovieCommand, FromStoredSnapshotsInOrderOfTimeMatchingThePngRenderer) {
   EXPECT_EQ(d.frames, 4);
   EXPECT_EQ(d.width, 320);
   EXPECT_EQ(d.height, 240);
-  const double want[] = {50, 100, 150, 200};
-  for (int k = 0; k < 4; ++k)
-    EXPECT_NEAR(png_time(dir / "frames" / ("frame_0000" + std::to_string(k) + ".png")), want[k],
-                1e-9);
-  // Frame 2 is t = 150 as `grainshock render` draws it with the same camera and style; the bound
-  // is test_movie.cpp's (yuv420p round trip), and the t = 100 picture must miss it.
-  const auto png = dir / "render_150.png", other = dir / "render_100.png";
-  const std::string args = " --framing box --width 320 --height 240 --out ";
-  ASSERT_EQ(test::grainshock("render " + files[2] + args + png.string()).exit_code, 0);
-  ASSERT_EQ(test::grainshock("render " + files[1] + args + other.string()).exit_code, 0);
-  const double same = psnr(d.rgb, read_png(png.string()), 320, 240);
-  EXPECT_GE(same, 30.0);
-  EXPECT_LT(psnr(d.rgb, read_png(other.string()), 320, 240), same - 3);
+  expect_kept_frame_times(dir, {50, 100, 150, 200});
+  // Frame 2 is t = 150 as `grainshock render` draws it with the same camera and style.
+  expect_frame_is_render(d, files[2], files[1], dir);
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// The snapshot as a LAMMPS text dump frame (`dump custom ... id type x y z vx vy vz radius`),
+// its active particles only, as a LAMMPS user would dump a group.
+std::string dump_frame(const Snapshot& s, std::int64_t step) {
+  std::ostringstream o;
+  o.precision(17);
+  std::size_t n = 0;
+  for (auto a : s.active) n += a != 0;
+  o << "ITEM: TIME\n"
+    << s.info.time << "\nITEM: TIMESTEP\n"
+    << step << "\nITEM: NUMBER OF ATOMS\n"
+    << n << "\nITEM: BOX BOUNDS pp pp pp\n";
+  for (int a = 0; a < 3; ++a)
+    o << s.info.origin[a] << " " << s.info.origin[a] + s.info.box[a] << "\n";
+  o << "ITEM: ATOMS id type x y z vx vy vz radius\n";
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.active[i])
+      o << i + 1 << " 1 " << s.position[i].x() << " " << s.position[i].y() << " "
+        << s.position[i].z() << " " << s.velocity[i].x() << " " << s.velocity[i].y() << " "
+        << s.velocity[i].z() << " " << s.radius[i] << "\n";
+  return o.str();
+}
+
+// Every frame of every file is a movie frame, all in order of Time: two extended XYZ files of
+// two frames each, their times interleaved, and a LAMMPS dump of three timesteps out of order.
+TEST(MovieCommand, EveryFrameOfMultiFrameFilesInOrderOfTime) {
+  const auto files = stored_snapshots("multi_run", std::string(kSmallRun) + " --t-max 200");
+  const auto dir = fresh_dir("multi");
+  const auto in = fresh_dir("multi_input");
+  fs::create_directories(in);
+  const std::string a = (in / "a.xyz").string(), b = (in / "b.xyz").string();
+  { std::ofstream(a, std::ios::binary) << slurp(files[2]) << slurp(files[0]); }
+  { std::ofstream(b, std::ios::binary) << slurp(files[3]) << slurp(files[1]); }
+  const std::string size = " --camera fixed --width 320 --height 240";
+  const Result r = movie(a + " " + b + size + " --keep-frames --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Decoded d = decode_movie(dir / "movie.mp4", 1);
+  EXPECT_EQ(d.frames, 4);
+  expect_kept_frame_times(dir, {50, 100, 150, 200});
+  // Decoded frame 1 is t = 100 (frame 1 of b.xyz) as `grainshock render` draws that snapshot.
+  expect_frame_is_render(d, files[1], files[0], dir);
+
+  const std::string dump = (in / "three.lammpstrj").string();
+  {
+    std::ofstream o(dump, std::ios::binary);
+    o << dump_frame(read_snapshot(files[2]), 300) << dump_frame(read_snapshot(files[0]), 100)
+      << dump_frame(read_snapshot(files[1]), 200);
+  }
+  const auto dump_dir = fresh_dir("multi_dump");
+  const Result rd = movie(dump + size + " --keep-frames --out " + dump_dir.string());
+  ASSERT_EQ(rd.exit_code, 0) << rd.err;
+  EXPECT_EQ(decode_movie(dump_dir / "movie.mp4").frames, 3);
+  expect_kept_frame_times(dump_dir, {50, 100, 150});
 }
 
 // The camera turns by --orbit over the movie: the first frame is the picture at --azimuth, the
@@ -257,6 +329,24 @@ TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
     EXPECT_NE(r.err.find(needle), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir)) << args << ": nothing is made";
   }
+  // A bad frame in the middle of a file of three: the message names the file and the frame, and
+  // a folder that existed (--force) is left as it was.
+  const std::string mid = (junk / "bad_middle.xyz").string();
+  {
+    std::string second = slurp(files[1]);
+    const auto line3 = second.find('\n', second.find('\n') + 1) + 1;  // first particle's line
+    second.replace(line3 + 2, second.find(' ', line3 + 2) - line3 - 2, "abc");
+    std::ofstream(mid, std::ios::binary) << slurp(files[0]) << second << slurp(files[2]);
+  }
+  const auto kept = fresh_dir("bad_stored_kept");
+  fs::create_directories(kept);
+  { std::ofstream(kept / "notes.txt") << "earlier results\n"; }
+  const Result rm = movie(mid + " --keep-frames --force --quiet --out " + kept.string());
+  EXPECT_NE(rm.exit_code, 0);
+  EXPECT_EQ(rm.err_lines(), 1) << rm.err;
+  EXPECT_NE(rm.err.find("bad_middle.xyz"), std::string::npos) << rm.err;
+  EXPECT_NE(rm.err.find("frame 1 of 3"), std::string::npos) << rm.err;
+  EXPECT_EQ(names_in(kept), std::vector<std::string>{"notes.txt"});
   // --orbit on a live 2D movie too.
   const auto dir = fresh_dir("bad_orbit_live");
   const Result r =
