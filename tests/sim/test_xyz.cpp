@@ -161,35 +161,5 @@ TEST(Xyz, RejectsBadInputNamingFileAndLine) {
             std::string::npos);
 }
 
-// What a run of 2.5e5 discs in a 2D box writes, read by ASE 3.22 itself: the cell, pbc, the
-// positions and get_velocities(); and our 3D files likewise.
-TEST(Xyz, AseReadsOurSnapshots) {
-  if (std::system("/usr/bin/python3 -c 'import ase.io' > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "/usr/bin/python3 with python3-ase is not installed";
-  for (int dim : {2, 3}) {
-    Snapshot s = sample(true, true);
-    s.info.dim = dim;
-    s.info.set_cubic_box(63.25);
-    if (dim == 3)
-      for (auto& p : s.position) p.z() = 7.5;
-    const auto p = out_path("for_ase_" + std::to_string(dim) + ".xyz");
-    write_xyz(p, s);
-    std::ofstream py(out_path("check_ase.py"));
-    py << "import ase.io, numpy as np\n"
-       << "a = ase.io.read('" << p << "')\n"
-       << "L = 63.25\n"
-       << (dim == 2 ? "assert list(a.pbc) == [True, True, False], a.pbc\n"
-                      "assert np.allclose(a.cell.lengths()[:2], [L, L]), a.cell\n"
-                    : "assert a.pbc.all() and np.allclose(a.cell.lengths(), [L, L, L]), a.cell\n")
-       << "v = a.get_velocities()\n"
-       << "assert np.allclose(v[:, 0], np.exp(-np.arange(5))), v\n"
-       << "assert np.allclose(v[:, 1], np.arange(5) / 7), v\n"
-       << "assert np.allclose(a.positions[:, 1], -np.sqrt(2) * np.arange(5))\n"
-       << "assert list(a.arrays['active']) == [0, 1, 0, 1, 0]\n";
-    py.close();
-    EXPECT_EQ(std::system(("/usr/bin/python3 " + out_path("check_ase.py")).c_str()), 0) << dim;
-  }
-}
-
 }  // namespace
 }  // namespace gs
