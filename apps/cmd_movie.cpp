@@ -56,7 +56,8 @@ void add_movie_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--color-by", opt->movie.colour_by,
                   "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
-                  "scaled-radial-velocity, radial-velocity or first-collision")
+                  "scaled-radial-velocity, radial-velocity, first-collision, none (one colour), "
+                  "or (stored snapshots) a numeric per-particle column of the files")
       ->capture_default_str();
   sub->add_option("--scale", opt->movie.scale,
                   "Colour scale lin, log or auto (log for speed and first-collision, else lin)")

@@ -47,7 +47,8 @@ void add_render_command(CLI::App& app) {
   sub->add_option("--colormap", opt->colormap, "One of " + maps)->capture_default_str();
   sub->add_option("--color-by", opt->colour_by,
                   "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
-                  "scaled-radial-velocity, radial-velocity or first-collision")
+                  "scaled-radial-velocity, radial-velocity, first-collision, none (one colour), "
+                  "or the name of a numeric per-particle column of the file")
       ->capture_default_str();
   sub->add_option("--range", opt->range,
                   "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
@@ -142,6 +143,7 @@ void add_render_command(CLI::App& app) {
     // "auto" means, and names what it lacks.
     if (snaps.size() == 1) {
       st.field = render::choose_field(o.colour_by, snaps.front(), o.inputs.front());
+      if (st.field == render::Field::Column) st.column = o.colour_by;
       st.scale = render::parse_scale(o.scale, st.field);
       render::check_style(st);
     }

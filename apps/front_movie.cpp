@@ -119,7 +119,7 @@ FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
   if (f.any_active && with_range) {
-    const auto values = render::field_values(s, style.field);
+    const auto values = render::field_values(s, style.field, nullptr, style.column);
     f.range = render::auto_range(values, s.active, style.scale, style.percentile_low,
                                  style.percentile_high);
   }
@@ -616,6 +616,7 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
         const std::string name = frames.name(k);
         if (k == 0) {
           p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
+          if (p.plan.style.field == render::Field::Column) p.plan.style.column = o.colour_by;
           p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
           render::check_style(p.plan.style);
           check_orbit(s.info.dim, o, name);
@@ -640,6 +641,9 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
         if (s.size() > 0 && render::needs_velocity(p.plan.style.field) && !s.has_velocity())
           throw UserError(name + " has no velocities (no velo property); cannot colour by " +
                           render::field_name(p.plan.style.field));
+        if (p.plan.style.field == render::Field::Column && !s.column(p.plan.style.column))
+          throw UserError(name + " has no column '" + p.plan.style.column + "' but " +
+                          frames.name(0) + " has: a movie's frames share one field");
         scans.push_back(scan(s, p.plan.style, p.plan.need_range));
       });
   progress.done();

@@ -7,10 +7,21 @@
 
 namespace gs::render {
 
-std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms) {
+std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
+                                 const std::string& column) {
   const std::size_t n = s.size();
   std::vector<double> v(n);
   if (v_rms) *v_rms = 0;
+  if (f == Field::None) {
+    v.assign(n, 0.5);
+    return v;
+  }
+  if (f == Field::Column) {
+    const Column* c = s.column(column);
+    if (!c) throw UserError("snapshot has no column '" + column + "'; cannot colour by it");
+    GS_CHECK(c->values.size() == n);
+    return c->values;
+  }
   if (f == Field::FirstCollision) {
     if (n > 0 && s.first_collision.size() != n)
       throw UserError("snapshot has no first_collision column; cannot colour by first collision");
@@ -63,33 +74,36 @@ Field default_field(const Snapshot& s) {
 std::vector<Field> available_fields(const Snapshot& s) {
   std::vector<Field> out;
   for (Field f : all_fields())
-    if (needs_velocity(f) ? s.size() == 0 || s.has_velocity()
-                          : s.size() == 0 || s.first_collision.size() == s.size())
+    if (f == Field::None || s.size() == 0 ||
+        (needs_velocity(f) ? s.has_velocity() : s.first_collision.size() == s.size()))
       out.push_back(f);
   return out;
 }
 
 Field choose_field(const std::string& name, const Snapshot& s, const std::string& file) {
-  if (name == "auto") {
-    const Field f = default_field(s);
-    if (s.size() > 0 && !s.has_velocity())
-      throw UserError("snapshot '" + file +
-                      "' has no velocities (no velo property); cannot colour by " + field_name(f));
-    return f;
-  }
   std::string list;
   for (Field f : available_fields(s)) {
     if (name == field_name(f)) return f;
     list += (list.empty() ? "" : ", ") + std::string(field_name(f));
   }
+  for (const Column& c : s.columns) list += ", " + c.name;
+  if (name == "auto") {
+    const Field f = default_field(s);
+    if (s.size() > 0 && !s.has_velocity())
+      throw UserError("snapshot '" + file +
+                      "' has no velocities (no velo property); cannot colour by " + field_name(f) +
+                      " (it can be coloured by " + list + ")");
+    return f;
+  }
+  if (s.column(name)) return Field::Column;
   for (Field f : all_fields())
     if (name == field_name(f))
       throw UserError(
           "snapshot '" + file + "' has no " +
           (needs_velocity(f) ? "velocities (no velo property)" : "first_collision property") +
-          "; cannot colour by " + name + " (it has: " + (list.empty() ? "none" : list) + ")");
+          "; cannot colour by " + name + " (it has: " + list + ")");
   throw UserError("unknown --color-by '" + name + "'; snapshot '" + file + "' can be coloured by " +
-                  (list.empty() ? "nothing" : list));
+                  list);
 }
 
 std::pair<double, double> auto_range(const std::vector<double>& values,

@@ -1,6 +1,7 @@
 #pragma once
 // Per-particle values behind the colours, and the colour range they span.
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -12,8 +13,10 @@ namespace gs::render {
 // One value per particle. UserError (naming the missing data) if the snapshot lacks what the
 // field needs. Radial velocity is measured from the centre of mass of the active particles.
 // The scaled fields divide by v_rms of the active particles (of the moving ones before the
-// first collision), which goes to *v_rms when asked for (0 for the other fields).
-std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms = nullptr);
+// first collision), which goes to *v_rms when asked for (0 for the other fields). Column takes
+// the snapshot's column of that name; None gives 0.5 for every particle.
+std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms = nullptr,
+                                 const std::string& column = {});
 
 // scaled-speed for a gas disturbed at rest (a kick: some particles have never moved), speed
 // otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly).
@@ -21,8 +24,11 @@ Field default_field(const Snapshot& s);
 
 // The fields this snapshot can be coloured by (speeds need velocities, first-collision its column).
 std::vector<Field> available_fields(const Snapshot& s);
-// --color-by NAME for the snapshot read from `file`: "auto" is default_field(); UserError naming
-// the file and listing available_fields() for an unknown name or one the snapshot lacks data for.
+// --color-by NAME for the snapshot read from `file`: "auto" is default_field(), a field's name
+// that field, else the name of one of the snapshot's columns (Field::Column: the column is
+// NAME; a field's name wins over a column's). UserError naming the file and listing what the
+// snapshot can be coloured by (available_fields() and its columns) for an unknown name or one
+// the snapshot lacks data for.
 Field choose_field(const std::string& name, const Snapshot& s, const std::string& file);
 
 // Robust range: the [plo, phi] percentiles of values[i] with mask[i] set (positive ones only

@@ -118,7 +118,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   std::vector<double> values;
   if (!overlay) {
     const Snapshot& s = *snaps.front();
-    values = field_values(s, style.field, &sc.v_rms);
+    values = field_values(s, style.field, &sc.v_rms, style.column);
     std::vector<std::uint8_t> mask = s.active;
     if (!any_active(s)) mask.assign(s.size(), 1);
     const auto fixed = style.range_per_frame ? std::nullopt : default_range(style.field, dim);
@@ -129,7 +129,8 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     if (is_scaled(style.field) && sc.v_rms > 0) sc.bar_note = "v_rms = " + fmt("%.3g", sc.v_rms);
     if (style.inset) sc.inset = inset_profile(s, is_scaled(style.field) ? sc.v_rms : 0);
   }
-  sc.bar_label = field_label(style.field);
+  sc.bar_label = style.field == Field::Column ? style.column : field_label(style.field);
+  if (style.field == Field::None) sc.style.colorbar = false;  // one colour says nothing
   if (style.scale == Scale::Log) sc.bar_label += " (log)";
   sc.time_text = time_text(snaps.front()->info);
   for (std::size_t k = 0; overlay && k < snaps.size(); ++k)
@@ -141,7 +142,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   int reserve = 0, reserve_top = 0, reserve_left = 0;
   if (!view.centre) {
     if (sc.inset) reserve_left = painter.inset_width(view.width, view.height);
-    if (style.colorbar && !overlay)
+    if (sc.style.colorbar && !overlay)
       reserve = painter.colorbar_width(view.width, view.height, sc.range, style.scale, sc.bar_label,
                                        sc.bar_note);
     else if (style.legend && overlay)

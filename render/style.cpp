@@ -5,9 +5,9 @@
 namespace gs::render {
 
 const std::vector<Field>& all_fields() {
-  static const std::vector<Field> f = {Field::ScaledSpeed, Field::Speed,
+  static const std::vector<Field> f = {Field::ScaledSpeed,          Field::Speed,
                                        Field::ScaledRadialVelocity, Field::RadialVelocity,
-                                       Field::FirstCollision};
+                                       Field::FirstCollision,       Field::None};
   return f;
 }
 
@@ -23,6 +23,10 @@ const char* field_name(Field f) {
       return "scaled-speed";
     case Field::ScaledRadialVelocity:
       return "scaled-radial-velocity";
+    case Field::Column:
+      return "column";
+    case Field::None:
+      return "none";
   }
   return "";
 }
@@ -54,6 +58,9 @@ const char* field_label(Field f) {
       return "v / v_rms";
     case Field::ScaledRadialVelocity:
       return "v_r / v_rms";
+    case Field::Column:
+    case Field::None:
+      return "";
   }
   return "";
 }
@@ -70,7 +77,7 @@ Scale parse_scale(const std::string& name, Field f) {
 }
 
 bool needs_velocity(Field f) {
-  return f != Field::FirstCollision;
+  return f != Field::FirstCollision && f != Field::Column && f != Field::None;
 }
 
 // 5-95% spans of the active particles' v / v_rms and v_r / v_rms (r = 0.1):
@@ -80,6 +87,7 @@ bool needs_velocity(Field f) {
 // - 3D, N = 2e5 at t = 500, 1000, 3000: v / v_rms 0.14-0.17 to 1.87-1.97, v_r / v_rms -0.09 to
 //   -0.02 to 1.53-1.61.
 std::optional<std::pair<double, double>> default_range(Field f, int dim) {
+  if (f == Field::None) return std::pair{0.0, 1.0};  // field_values() gives 0.5: the map's middle
   if (f == Field::ScaledSpeed) return dim == 3 ? std::pair{0.15, 1.9} : std::pair{0.3, 1.5};
   if (f == Field::ScaledRadialVelocity)
     return dim == 3 ? std::pair{-0.1, 1.6} : std::pair{0.3, 1.3};

@@ -11,8 +11,18 @@ namespace gs::render {
 // Per-particle quantity mapped through the colormap. The scaled ones divide by v_rms(t) of the
 // active particles, the paper's scaling variable v t^(1-alpha) up to a constant (Figs. 4b, 5b):
 // their distribution hardly moves with time, so one fixed range means one scaled speed in
-// every frame of a movie.
-enum class Field { Speed, RadialVelocity, FirstCollision, ScaledSpeed, ScaledRadialVelocity };
+// every frame of a movie. Column is a numeric per-particle column of the file (Style::column
+// names it: LAMMPS c_pe, GSD charge, ...); None draws every particle in one colour, so that a
+// file without velocities can be drawn.
+enum class Field {
+  Speed,
+  RadialVelocity,
+  FirstCollision,
+  ScaledSpeed,
+  ScaledRadialVelocity,
+  Column,
+  None
+};
 enum class Scale { Linear, Log };
 enum class Background { Light, Dark };
 
@@ -24,6 +34,7 @@ struct Style {
   // on near-black).
   std::string colormap = "magma";
   Field field = Field::Speed;
+  std::string column;  // the Snapshot::columns name when field is Column
   Scale scale = Scale::Linear;
   // Fixed colour range; when absent, the field's default_range() for the scaled fields, else
   // robust percentiles of the shown particles' values, so one outlier (the kicked particle
@@ -49,7 +60,7 @@ Field parse_field(const std::string& name);
 Background parse_background(const std::string& name);  // light | dark
 const char* field_name(Field f);                       // the command-line word
 const char* field_label(Field f);                      // the colour bar's title
-// Every field, in the order the help lists them.
+// Every field but Column (a name of the file's), in the order the help lists them.
 const std::vector<Field>& all_fields();
 bool is_scaled(Field f);
 // --scale auto|lin|log: auto is log for plain speed and first-collision times (they span

@@ -1,0 +1,231 @@
+// Pictures of other programs' files: --color-by a numeric column the file has, or none (one
+// colour), so that a file without velocities can be drawn; and `render` on bad files: one line
+// naming the file and the line or frame, exit 1, no PNG.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "render/field.h"
+#include "render/overlay.h"
+#include "render/png.h"
+#include "render/scene.h"
+#include "sim/error.h"
+#include "sim/gsd.h"
+#include "tests/apps/cli_test_util.h"
+
+namespace gs::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+OverlayPainter& painter() {
+  static OverlayPainter p(Style{}.font);
+  return p;
+}
+
+View view() {
+  View v;
+  v.width = 320;
+  v.height = 240;
+  return v;
+}
+
+// A row of 11 discs along x, no velocities, with a LAMMPS-like column c_pe = x and typeid.
+Snapshot row_without_velocities() {
+  Snapshot s;
+  s.info.dim = 2;
+  s.info.set_cubic_box(40);
+  Column pe{"c_pe", {}}, type{"typeid", {}};
+  for (int i = 0; i <= 10; ++i) {
+    s.position.emplace_back(10 + 2 * i, 20, 0);
+    s.radius.push_back(0.5);
+    s.active.push_back(1);
+    pe.values.push_back(i);
+    type.values.push_back(i % 2);
+  }
+  s.columns = {pe, type};
+  return s;
+}
+
+TEST(ColourBy, AColumnOfTheFileGivesTheShades) {
+  const Snapshot s = row_without_velocities();
+  Style st;
+  st.field = choose_field("c_pe", s, "row.dump");
+  ASSERT_EQ(st.field, Field::Column);
+  st.column = "c_pe";
+  st.range = std::pair{0.0, 10.0};
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  EXPECT_EQ(sc.bar_label, "c_pe");
+  ASSERT_EQ(sc.sprites.size(), s.size());
+  // Sprites may be reordered for drawing; the disc at x = 10 + 2i has c_pe = i.
+  const float x0 = std::min_element(sc.sprites.begin(), sc.sprites.end(), [](auto& a, auto& b) {
+                     return a.x < b.x;
+                   })->x;
+  for (std::size_t k = 0; k < sc.sprites.size(); ++k) {
+    const double i = std::round((sc.sprites[k].x - x0) / 2);
+    EXPECT_NEAR(sc.shade[k], i / 10, 1e-6) << k;
+  }
+  // Without a fixed range, the percentiles of the column (1 to 99 of 0..10).
+  st.range.reset();
+  const Scene auto_sc = build_scene({&s}, st, view(), painter());
+  EXPECT_NEAR(auto_sc.range.first, 0, 1e-12);
+  EXPECT_NEAR(auto_sc.range.second, 10, 1e-12);
+}
+
+TEST(ColourBy, NoneDrawsOneColourWithoutABar) {
+  const Snapshot s = row_without_velocities();
+  Style st;
+  st.field = choose_field("none", s, "row.dump");
+  ASSERT_EQ(st.field, Field::None);
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  EXPECT_FALSE(sc.style.colorbar);
+  ASSERT_EQ(sc.sprites.size(), s.size());
+  for (const Sprite& p : sc.sprites) EXPECT_EQ(std::memcmp(p.rgba, sc.sprites[0].rgba, 4), 0);
+  for (float shade : sc.shade) EXPECT_EQ(shade, 0.5f);
+}
+
+TEST(ColourBy, UnknownOrMissingFieldsListWhatTheSnapshotHas) {
+  const Snapshot s = row_without_velocities();
+  for (const char* name : {"potential", "speed", "auto"}) {
+    try {
+      choose_field(name, s, "row.dump");
+      ADD_FAILURE() << name << " accepted";
+    } catch (const UserError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("row.dump"), std::string::npos) << m;
+      EXPECT_NE(m.find("none, c_pe, typeid"), std::string::npos) << m;
+      EXPECT_EQ(m.find("scaled-speed"), std::string::npos) << "no velocities: " << m;
+    }
+  }
+}
+
+using test::CommandResult;
+using test::scratch_dir;
+
+CommandResult render(const std::string& args) {
+  return test::grainshock("render " + args);
+}
+
+std::string asset(const std::string& name) {
+  return std::string(GRAINSHOCK_ASSETS_DIR) + "/io/" + name;
+}
+
+// A LAMMPS dump custom with no velocities but a per-atom compute, as `dump custom ... c_pe`.
+fs::path dump_without_velocities(const fs::path& dir) {
+  fs::create_directories(dir);
+  std::ofstream f(dir / "pe.dump");
+  f << "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n4\nITEM: BOX BOUNDS pp pp pp\n0 20\n0 10\n"
+       "-0.5 0.5\nITEM: ATOMS id type x y z c_pe\n1 1 2 2 0 -3.5\n2 1 8 5 0 -1\n3 2 14 7 0 "
+       "-2.25\n4 2 18 3 0 0.5\n";
+  return dir / "pe.dump";
+}
+
+TEST(RenderFiles, AFileWithoutVelocitiesIsDrawnByAColumnOrInOneColour) {
+  const fs::path dir = scratch_dir("pe");
+  const fs::path dump = dump_without_velocities(dir);
+  const fs::path by_pe = dir / "pe.png", plain = dir / "none.png";
+  auto r =
+      render(dump.string() + " --color-by c_pe --width 200 --height 100 --out " + by_pe.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = render(dump.string() + " --color-by none --width 200 --height 100 --out " + plain.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image a = read_png(by_pe.string()), b = read_png(plain.string());
+  EXPECT_EQ(a.width, 200);
+  EXPECT_NE(a.rgba, b.rgba) << "c_pe and one colour gave the same picture";
+  // The default (a speed) names what is missing and what the file can be coloured by instead.
+  r = render(dump.string() + " --out " + (dir / "auto.png").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("no velocities"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("none, id, type, c_pe"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "auto.png"));
+}
+
+// A movie of stored dumps without velocities, coloured by their column; a frame without it is
+// named before anything is made.
+TEST(RenderFiles, MovieOfStoredFilesByAColumn) {
+  const fs::path dir = scratch_dir("movie");
+  const fs::path a = dump_without_velocities(dir / "a"), b = dump_without_velocities(dir / "b");
+  const fs::path out = dir / "movie";
+  auto r =
+      test::grainshock("movie " + a.string() + " " + b.string() +
+                       " --color-by c_pe --quiet --width 96 --height 64 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "movie.mp4"));
+  std::ofstream(dir / "other.xyz")
+      << "1\nLattice=\"20 0 0 0 10 0 0 0 1\" Properties=species:S:1:pos:R:3 "
+         "Dim=2\nX 1 1 0\n";
+  r = test::grainshock("movie " + a.string() + " " + (dir / "other.xyz").string() +
+                       " --color-by c_pe --quiet --out " + (dir / "bad").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("other.xyz' has no column 'c_pe'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+// Each bad file: exit 1, one line that names the file and where, and no PNG.
+void expect_refused(const fs::path& file, const std::string& extra, const std::string& where) {
+  const fs::path png = file.string() + ".png";
+  const CommandResult r = render(file.string() + extra + " --out " + png.string());
+  EXPECT_EQ(r.exit_code, 1) << file << ": " << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find(file.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(where), std::string::npos) << "expected '" << where << "' in " << r.err;
+  EXPECT_FALSE(fs::exists(png));
+}
+
+fs::path write(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  std::ofstream(dir / name, std::ios::binary) << bytes;
+  return dir / name;
+}
+
+TEST(RenderFiles, BadFilesAreNamedWithTheLineOrFrame) {
+  const fs::path dir = scratch_dir("bad");
+  fs::create_directories(dir);
+  const std::string xyz = "2\nProperties=species:S:1:pos:R:3:velo:R:3\n";
+  expect_refused(write(dir, "truncated.xyz", xyz + "X 0 0 0 1 0 0\n"), "", "truncated");
+  expect_refused(write(dir, "second_truncated.xyz",
+                       xyz + "X 0 0 0 1 0 0\nX 1 1 1 0 0 0\n" + xyz + "X 0 0 0 1 0 0\n"),
+                 " --frame 1", "frame 1");
+  std::string many;
+  for (int i = 0; i < 5; ++i) many += "X 0 0 0 1 0 0\n";
+  expect_refused(write(dir, "count.xyz", xyz + many), "", "line 5");
+  expect_refused(write(dir, "nan.xyz", xyz + "X 0 0 0 1 0 0\nX 1 nan 1 0 0 0\n"), "", "line 4");
+  expect_refused(write(dir, "inf.xyz", xyz + "X 0 0 0 1 0 0\nX 1 1 -inf 0 0 0\n"), "", "line 4");
+  expect_refused(asset("ovito_2d.xyz"), " --frame 1", "1 frame");
+
+  const std::string box = "ITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\n";
+  const std::string atoms = "ITEM: ATOMS id x y z vx vy vz\n1 0 0 0 1 0 0\n2 .5 .5 .5 0 0 0\n";
+  expect_refused(write(dir, "no_number.dump", "ITEM: TIMESTEP\n0\n" + box + atoms), "",
+                 "NUMBER OF ATOMS");
+  expect_refused(write(dir, "no_box.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\n" + atoms),
+                 "", "BOX BOUNDS");
+  expect_refused(asset("custom_3d.lammpstrj"), " --frame 99", "frame");
+
+  const fs::path good = dir / "good.gsd";
+  Snapshot s;
+  s.info.dim = 2;
+  s.info.set_cubic_box(10);
+  s.position = {{1, 1, 0}, {3, 4, 0}};
+  s.velocity = {{1, 0, 0}, {0, 0, 0}};
+  s.radius = {0.5, 0.5};
+  s.active = {1, 0};
+  write_gsd(good.string(), s);
+  ASSERT_EQ(render(good.string() + " --out " + (dir / "good.png").string()).exit_code, 0);
+  const std::string bytes = test::read_file(good);
+  std::string bad_magic = bytes;
+  bad_magic[0] ^= 0x40;
+  expect_refused(write(dir, "magic.gsd", bad_magic), "", "magic");
+  std::string bad_index = bytes;
+  const std::uint64_t far = 1ull << 50;
+  std::memcpy(bad_index.data() + 8, &far, 8);  // the index location
+  expect_refused(write(dir, "index.gsd", bad_index), "", "index");
+  expect_refused(good, " --frame 1", "1 frame");
+}
+
+}  // namespace
+}  // namespace gs::render
