@@ -9,6 +9,8 @@
 #include <cstring>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include "sim/error.h"
@@ -59,6 +61,22 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
 
 }  // namespace
 
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.find_first_of("eE.") == std::string::npos) return {};
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        // 9.2e18 is where int64 ends; above it the digits would not be exact.
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(x) || x != std::floor(x) ||
+            std::fabs(x) > 9.2e18)
+          return text + " is not a whole number";
+        text = std::to_string(static_cast<long long>(x));
+        return {};
+      },
+      "", "whole number");
+}
+
 void add_config_option(CLI::App& sub) {
   auto file = std::make_shared<std::string>();
   sub.add_option("--config", *file, "TOML file of flag = value lines; command-line flags win")
@@ -70,7 +88,9 @@ void add_config_option(CLI::App& sub) {
 
 void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
   sub.add_option("--dim", c.dim, "Dimension d (1, 2 or 3)")->capture_default_str();
-  sub.add_option("--particles", c.particles, "Number of particles N")->capture_default_str();
+  sub.add_option("--particles", c.particles, "Number of particles N (2e6 is accepted)")
+      ->transform(whole_number())
+      ->capture_default_str();
   sub.add_option("--density", c.density, "Number density n (diameter 1)")->capture_default_str();
   sub.add_option("--restitution", c.restitution, "Coefficient of restitution r in [0, 1]")
       ->capture_default_str();

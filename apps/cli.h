@@ -14,6 +14,10 @@ namespace gs::app {
 // Adds --config FILE (TOML, keys = long flag names; flags given on the command line win).
 void add_config_option(CLI::App& sub);
 
+// Lets a count be written as physicists write it, 2e6 or 1e12, when it is a whole number: the
+// option's integer conversion then sees the digits (so its range checks still apply).
+CLI::Validator whole_number();
+
 // The physics flags shared by run, ensemble and movie.
 void add_physics_options(CLI::App& sub, PhysicsConfig& c);
 

@@ -160,6 +160,7 @@ void add_ensemble_command(CLI::App& app) {
   add_physics_options(*sub, opt->physics);
   sub->add_option("--realisations", opt->realisations,
                   "Number of realisations M (indices --realisation .. + M - 1)")
+      ->transform(whole_number())
       ->capture_default_str();
   sub->add_option("--threads", opt->threads,
                   "Worker threads K per process (results do not depend on it)")

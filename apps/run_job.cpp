@@ -116,7 +116,7 @@ std::pair<double, double> common_range(const std::vector<Snapshot>& snaps,
 }
 
 std::string png_name(const std::string& stem, double t) {
-  return stem + "t_" + time_tag(t) + ".png";
+  return stem + time_stem(t) + ".png";
 }
 
 // The style of a run's pictures: scaled speed for a kick, with the profile across the band.

@@ -41,6 +41,13 @@ static std::string num(double x) {
   return format_double(x);
 }
 
+// A size in a message, to three significant digits: "537000 GB", not "536999.936380992 GB".
+static std::string rounded(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
 void validate(const PhysicsConfig& c) {
   auto fail = [](const std::string& m) { throw UserError(m); };
   if (c.dim < 1 || c.dim > 3) fail("--dim " + std::to_string(c.dim) + ": must be 1, 2 or 3");
@@ -50,7 +57,7 @@ void validate(const PhysicsConfig& c) {
   if (c.particles >= INT32_MAX)
     fail("--particles " + std::to_string(c.particles) + ": at most " +
          std::to_string(INT32_MAX - 1) + " (and this many would need about " +
-         num(estimated_bytes(c) / 1e9) + " GB of memory)");
+         rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
   // Run files are TOML, whose integers are signed 64-bit: a larger seed could not be read back.
   if (c.seed > static_cast<std::uint64_t>(INT64_MAX))
     fail("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
@@ -92,8 +99,7 @@ void validate(const PhysicsConfig& c) {
   if (cells > limit) {
     const std::string what = std::to_string(c.particles) + " particles in a box of side " +
                              num(c.box()) + " need " + num(cells) + " neighbour cells (" +
-                             num(std::ceil(cells * 8 / 1e9)) + " GB), over the limit of " +
-                             num(limit);
+                             rounded(cells * 8 / 1e9) + " GB), over the limit of " + num(limit);
     if (c.lattice > 0)
       fail("--lattice " + num(c.lattice) + ": " + what + "; use --lattice " +
            num(std::floor(limit / n)) + " or less");

@@ -68,17 +68,17 @@ std::vector<double> snapshot_times(const RunPlan& plan) {
   return merge_times(plan.snapshot_times, {plan.physics.t_max});
 }
 
-std::string time_tag(double t) {
+std::string time_stem(double t) {
   char buf[32];
   if (t == std::floor(t) && t < 1e15) {
     std::snprintf(buf, sizeof buf, "%.0f", t);
-    return buf;
+    return std::string("tsim_") + buf;
   }
-  return format_number(t);
+  return "tsim_" + format_number(t);
 }
 
 std::string snapshot_name(double t, SnapshotFormat format) {
-  return "t_" + time_tag(t) + snapshot_extension(format);
+  return time_stem(t) + snapshot_extension(format);
 }
 
 std::filesystem::path RunLoop::checkpoint_path(const std::filesystem::path& dir) {

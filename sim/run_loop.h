@@ -38,11 +38,12 @@ void check_plan(const RunPlan& plan, int snapshot_copies = 1);
 
 std::vector<double> sample_times(const RunPlan& plan);
 std::vector<double> snapshot_times(const RunPlan& plan);
-// "t_<time>.xyz" (or .gsd), whole times as plain integers (t_100000, not t_1e+05) so that
-// names sort. One file per snapshot time, also for GSD: a resume then never has to cut back a
-// multi-frame file, and each file is a whole record of its moment.
+// "tsim_<t>": the simulation time t (diameter / v0, not the paper's unit) of a snapshot or
+// picture file, whole times as plain integers (tsim_100000, not tsim_1e+05) so that names sort.
+std::string time_stem(double t);
+// time_stem(t) + ".xyz" (or ".gsd"). One file per snapshot time, also for GSD: a resume then
+// never has to cut back a multi-frame file, and each file is a whole record of its moment.
 std::string snapshot_name(double t, SnapshotFormat format = SnapshotFormat::Xyz);
-std::string time_tag(double t);
 
 struct RunTiming {
   double setup = 0;        // making the initial state (or reading the checkpoint)

@@ -134,7 +134,7 @@ TEST(CliResume, WhatCannotBeResumedIsRefused) {
                 .exit_code,
             128 + SIGINT);
   ASSERT_TRUE(fs::exists(cut / "checkpoint.bin"));
-  EXPECT_FALSE(fs::exists(cut / "snapshots/t_100.xyz")) << "--force left the old run's files";
+  EXPECT_FALSE(fs::exists(cut / "snapshots/tsim_100.xyz")) << "--force left the old run's files";
   const std::string good = read_file(cut / "checkpoint.bin"), toml = read_file(cut / "run.toml");
   auto refused = [&](const fs::path& dir, const std::string& says) {
     const bool exists = fs::exists(dir);

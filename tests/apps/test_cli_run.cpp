@@ -21,8 +21,8 @@ TEST(CliRun, WritesTheRunFolder) {
   const auto dir = scratch_dir("run");
   const auto r = grainshock("run " + kSmall + " --snapshot-times 100,200 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"run.toml", "timeseries.csv", "summary.json", "snapshots/t_100.xyz",
-                        "snapshots/t_200.xyz", "snapshots/t_300.xyz"})
+  for (const char* f : {"run.toml", "timeseries.csv", "summary.json", "snapshots/tsim_100.xyz",
+                        "snapshots/tsim_200.xyz", "snapshots/tsim_300.xyz"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string csv = read_file(dir / "timeseries.csv");
   EXPECT_EQ(
@@ -38,7 +38,7 @@ TEST(CliRun, WritesTheRunFolder) {
   for (const char* key :
        {"\"setup_seconds\"", "\"run_seconds\"", "\"snapshot_seconds\"", "\"checkpoint_seconds\""})
     EXPECT_NE(timing.find(key), std::string::npos) << key;
-  const Snapshot s = read_snapshot((dir / "snapshots/t_300.xyz").string());
+  const Snapshot s = read_snapshot((dir / "snapshots/tsim_300.xyz").string());
   EXPECT_EQ(s.size(), 3000u);
   EXPECT_EQ(s.info.dim, 2);
   EXPECT_DOUBLE_EQ(s.info.time, 300.0);
@@ -52,8 +52,8 @@ TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
                             dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f :
-       {"frames/t_100.png", "frames/t_200.png", "frames/t_300.png", "frames/overlay.png",
-        "frames/elastic_t_150.png", "snapshots/elastic_t_150.xyz"}) {
+       {"frames/tsim_100.png", "frames/tsim_200.png", "frames/tsim_300.png", "frames/overlay.png",
+        "frames/elastic_tsim_150.png", "snapshots/elastic_tsim_150.xyz"}) {
     ASSERT_TRUE(fs::exists(dir / f)) << f;
     if (fs::path(f).extension() != ".png") continue;
     const render::Image img = render::read_png((dir / f).string());
@@ -61,7 +61,7 @@ TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
     EXPECT_EQ(img.height, 360) << f;
   }
   // The elastic gas moves the same kick's energy without loss.
-  const Snapshot elastic = read_snapshot((dir / "snapshots/elastic_t_150.xyz").string());
+  const Snapshot elastic = read_snapshot((dir / "snapshots/elastic_tsim_150.xyz").string());
   double energy = 0;
   for (const auto& v : elastic.velocity) energy += 0.5 * v.squaredNorm();
   EXPECT_NEAR(energy, 0.5, 1e-12);
@@ -75,11 +75,12 @@ TEST(CliRun, NoPhysicsFlagsRunTheFig1Job) {
   const auto r = grainshock("run --quiet --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Paper times 5000, 10000, 20000, 50000 are simulation times 10000 ... 100000 at n = 0.25.
-  for (const char* f : {"frames/t_10000.png", "frames/t_20000.png", "frames/t_40000.png",
-                        "frames/t_100000.png", "frames/overlay.png", "frames/elastic_t_50000.png",
-                        "snapshots/t_100000.xyz", "movie.mp4", "timeseries.csv"})
+  for (const char* f :
+       {"frames/tsim_10000.png", "frames/tsim_20000.png", "frames/tsim_40000.png",
+        "frames/tsim_100000.png", "frames/overlay.png", "frames/elastic_tsim_50000.png",
+        "snapshots/tsim_100000.xyz", "movie.mp4", "timeseries.csv"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
-  const Snapshot s = read_snapshot((dir / "snapshots/t_100000.xyz").string());
+  const Snapshot s = read_snapshot((dir / "snapshots/tsim_100000.xyz").string());
   EXPECT_EQ(s.size(), 250000u);
   EXPECT_EQ(s.info.restitution.value_or(-1), 0.1);
   EXPECT_EQ(render::read_png((dir / "frames/overlay.png").string()).width, 1920);
@@ -137,6 +138,9 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --snapshot-times 5,1e9", "--snapshot-times"},
       // Sizes are checked against memory and the cell-grid limits before anything is made.
       {"run --dim 3 --particles 1000000000000", "GB of memory"},
+      // Counts in scientific notation are read as the whole numbers they are, or named.
+      {"run --dim 3 --particles 1e12", "GB of memory"},
+      {"run --particles 2.5e0", "not a whole number"},
       {"run --sample-every 1e-7", "use --sample-every 0.01 or more"},
       {"run --particles 2000 --density 2e-6", "neighbour cells"},
       {"run --dim 1 --particles 1000 --density 1e-7", "use --density"},

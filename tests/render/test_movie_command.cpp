@@ -172,7 +172,7 @@ std::vector<std::string> stored_snapshots(const std::string& name, const std::st
   EXPECT_EQ(r.exit_code, 0) << r.err;
   std::vector<std::string> files;
   for (const char* t : {"50", "100", "150", "200"})
-    files.push_back((run / "snapshots" / (std::string("t_") + t + ".xyz")).string());
+    files.push_back((run / "snapshots" / (std::string("tsim_") + t + ".xyz")).string());
   return files;
 }
 
