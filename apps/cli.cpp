@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 #include <vector>
 
 #include "sim/error.h"
@@ -42,6 +43,10 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
   for (auto&& [k, node] : root) {
     const std::string key(k.str());
     CLI::Option* opt = sub.get_option_no_throw("--" + key);
+    if (opt == nullptr) {  // a positional argument, such as movie's snapshot files
+      opt = sub.get_option_no_throw(key);
+      if (opt != nullptr && !opt->get_positional()) opt = nullptr;
+    }
     if (opt == nullptr || key == "config")
       throw UserError("--config " + file + ": unknown key '" + key + "'");
     if (opt->count() > 0) continue;  // given on the command line
@@ -59,7 +64,51 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
   }
 }
 
+// A TOML value: integers as they are, other numbers as format_double writes them (so that a
+// value read back from the file is written the same), anything else as a quoted string.
+std::string toml_value(const std::string& text) {
+  if (text == "true" || text == "false") return text;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  const bool number = !text.empty() && *end == '\0' && std::isfinite(x) &&
+                      text.find_first_of("xXpP") == std::string::npos;  // no hex floats
+  if (number) return text.find_first_of(".eE") == std::string::npos ? text : format_double(x);
+  std::string quoted = "\"";
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') quoted += '\\';
+    quoted += ch;
+  }
+  return quoted + "\"";
+}
+
 }  // namespace
+
+std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out) {
+  static const std::set<std::string> kLeftOut = {"--help", "--version", "--config",
+                                                 "--out",  "--force",   "--quiet"};
+  std::string out;
+  for (const CLI::Option* opt : sub.get_options()) {
+    const std::string name = opt->get_name();
+    if (kLeftOut.contains(name) ||
+        std::find(left_out.begin(), left_out.end(), name) != left_out.end())
+      continue;
+    const std::string key = opt->get_positional() ? name : name.substr(2);
+    if (opt->get_expected_max() == 0) {  // a flag: every one of ours defaults to false
+      const bool on = opt->count() > 0 && opt->as<bool>();
+      out += key + " = " + (on ? "true" : "false") + "\n";
+      continue;
+    }
+    std::vector<std::string> values = opt->results();
+    if (values.empty() && !opt->get_default_str().empty()) values = {opt->get_default_str()};
+    if (values.empty()) continue;  // unset and without a default: the command decides
+    const bool list = opt->get_items_expected_max() > 1 || values.size() > 1;
+    out += key + " = " + (list ? "[" : "");
+    for (std::size_t i = 0; i < values.size(); ++i)
+      out += (i > 0 ? ", " : "") + toml_value(values[i]);
+    out += list ? "]\n" : "\n";
+  }
+  return out;
+}
 
 CLI::Validator whole_number() {
   return CLI::Validator(

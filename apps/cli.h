@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "sim/atomic_file.h"
 #include "sim/config.h"
@@ -13,6 +14,13 @@ namespace gs::app {
 
 // Adds --config FILE (TOML, keys = long flag names; flags given on the command line win).
 void add_config_option(CLI::App& sub);
+
+// Every option of `sub` that was given or has a default, as TOML lines `name = value` (the long
+// flag name, or a positional argument's name) that --config reads back: the run file of a
+// command whose settings are all flags. Help, version, --config and the output-folder flags
+// (--out, --force, --quiet) are left out, since they do not shape the results, and so are the
+// options named in `left_out`.
+std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out = {});
 
 // Lets a count be written as physicists write it, 2e6 or 1e12, when it is a whole number: the
 // option's integer conversion then sees the digits (so its range checks still apply).

@@ -1,10 +1,12 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
-// DIR/movie.mp4 beside run.toml, or, given snapshot files, draws them in order of their time
-// into DIR/movie.mp4 (see apps/front_movie.h).
+// DIR/movie.mp4 beside movie.toml (every setting, for --config), or, given snapshot files, draws
+// them in order of their time into DIR/movie.mp4 (see apps/front_movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <span>
+#include <string_view>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
@@ -15,6 +17,28 @@
 #include "sim/stop.h"
 
 namespace gs::app {
+namespace {
+
+// What a movie writes into its folder; --force removes these first, so that a folder never
+// mixes two movies.
+constexpr const char* kMovieOutputs[] = {"movie.toml", "movie.mp4", "frames"};
+
+// Flags that shape a simulation: they mean nothing to stored snapshots.
+constexpr std::string_view kSimulationFlags[] = {
+    "--dim",       "--particles", "--density",       "--restitution",
+    "--cutoff",    "--speed",     "--seed",          "--realisation",
+    "--t-max",     "--initial",   "--temperature",   "--lattice",
+    "--kick-site", "--frames",    "--frame-spacing", "--t-start"};
+
+void write_movie_toml(const std::filesystem::path& dir, const CLI::App& sub, bool stored) {
+  write_file_atomic(dir / "movie.toml",
+                    "# grainshock movie: every setting that shapes the movie.\n"
+                    "# Again: grainshock movie --config movie.toml --out NEW\n" +
+                        settings_toml(sub, stored ? std::span(kSimulationFlags)
+                                                  : std::span<const std::string_view>()));
+}
+
+}  // namespace
 
 void add_movie_command(CLI::App& app) {
   struct Options {
@@ -92,28 +116,23 @@ void add_movie_command(CLI::App& app) {
       ->capture_default_str();
   sub->callback([opt, sub] {
     if (!opt->files.empty()) {
-      // Flags that shape a simulation mean nothing to stored snapshots.
-      for (const CLI::Option* option : sub->get_options()) {
-        const std::string name = option->get_name();
-        const bool physics = name == "--dim" || name == "--particles" || name == "--density" ||
-                             name == "--restitution" || name == "--cutoff" || name == "--speed" ||
-                             name == "--seed" || name == "--realisation" || name == "--t-max" ||
-                             name == "--initial" || name == "--temperature" ||
-                             name == "--lattice" || name == "--kick-site" || name == "--frames" ||
-                             name == "--frame-spacing" || name == "--t-start";
-        if (physics && option->count() > 0)
-          throw UserError(name + " sets up a simulation; a movie of stored snapshots takes none");
-      }
+      for (std::string_view name : kSimulationFlags)
+        if (sub->get_option(std::string(name))->count() > 0)
+          throw UserError(std::string(name) +
+                          " sets up a simulation; a movie of stored snapshots takes none");
       // Every file is read (and checked) before the folder is made.
       StoredMovie m = prepare_stored_movie(opt->files, opt->movie);
       std::error_code ec;
       const bool existed = std::filesystem::exists(opt->out, ec);
-      const auto dir = prepare_output_dir(opt->out, opt->force);
+      const auto dir = prepare_output_dir(opt->out, opt->force, kMovieOutputs);
+      write_movie_toml(dir, *sub, true);
       FrontMovieResult r;
       try {
         r = write_stored_movie(m, dir);
       } catch (...) {
-        // A file that fails now (changed since the first pass) leaves no folder behind either.
+        // A file that fails now (changed since the first pass) leaves no movie.toml, and no
+        // folder if this command made it.
+        std::filesystem::remove(dir / "movie.toml", ec);
         if (!existed) std::filesystem::remove(dir, ec);
         throw;
       }
@@ -123,8 +142,8 @@ void add_movie_command(CLI::App& app) {
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);
-    const auto dir = prepare_output_dir(opt->out, opt->force);
-    write_file_atomic(dir / "run.toml", to_toml(opt->physics));
+    const auto dir = prepare_output_dir(opt->out, opt->force, kMovieOutputs);
+    write_movie_toml(dir, *sub, false);
     const FrontMovieResult r = write_front_movie(opt->physics, opt->movie, dir);
     if (r.stopped) throw Exit{kExitInterrupted};
   });

@@ -65,7 +65,7 @@ TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
             " --t-max 200 --frames 24 --fps 12 --width 320 --height 240 --keep-frames --out " +
             dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "run.toml"}));
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "movie.toml"}));
   EXPECT_EQ(names_in(dir / "frames").size(), 24u);
 
   const int k = 20;
@@ -83,6 +83,40 @@ TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
   ASSERT_EQ(d.rgb.width, 320);
   EXPECT_GE(psnr(d.rgb, png, 320, 240), 30.0);
   EXPECT_LT(psnr(d.rgb, previous, 320, 240), psnr(d.rgb, png, 320, 240) - 3);
+}
+
+// movie.toml holds every setting: --config gives the same movie.toml and the same frames, for a
+// simulated movie and for one of stored snapshots (whose files are in it too).
+TEST(MovieCommand, MovieTomlReproducesTheMovie) {
+  const auto a = fresh_dir("toml_a"), b = fresh_dir("toml_b");
+  Result r = movie(std::string(kSmallRun) +
+                   " --restitution 0.3 --t-max 150 --frames 6 --frame-spacing lin --width 160 "
+                   "--height 120 --inset --colormap viridis --range 0.2 1.8 --out " +
+                   a.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string toml = test::read_file(a / "movie.toml");
+  for (const char* line :
+       {"\nrestitution = 0.3\n", "\nframes = 6\n", "\ninset = true\n", "\ncolormap = \"viridis\"\n",
+        "\nrange = [0.2, 1.8]\n", "\nclip = false\n", "\nseed = 7\n"})
+    EXPECT_NE(toml.find(line), std::string::npos) << line << " not in\n" << toml;
+  EXPECT_EQ(toml.find("\nout = "), std::string::npos) << "the folder is not a setting";
+  r = movie("--quiet --config " + (a / "movie.toml").string() + " --out " + b.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_file(b / "movie.toml"), toml);
+  EXPECT_EQ(test::read_file(b / "movie.mp4"), test::read_file(a / "movie.mp4"));
+
+  const auto c = fresh_dir("toml_c"), d = fresh_dir("toml_d");
+  r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+                       c.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = movie("--quiet --width 160 --height 120 " + (c / "snapshots/tsim_50.xyz").string() + " " +
+            (c / "snapshots/tsim_100.xyz").string() + " --out " + d.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto e = fresh_dir("toml_e");
+  r = movie("--quiet --config " + (d / "movie.toml").string() + " --out " + e.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(decode_movie(e / "movie.mp4").frames, 2);
+  EXPECT_EQ(test::read_file(e / "movie.mp4"), test::read_file(d / "movie.mp4"));
 }
 
 TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
@@ -204,7 +238,7 @@ TEST(MovieCommand, FromStoredSnapshotsInOrderOfTimeMatchingThePngRenderer) {
       movie(files[2] + " " + files[0] + " " + files[3] + " " + files[1] +
             " --camera fixed --width 320 --height 240 --keep-frames --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4"}));
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "movie.toml"}));
   const Decoded d = decode_movie(dir / "movie.mp4", 2);
   EXPECT_EQ(d.frames, 4);
   EXPECT_EQ(d.width, 320);
@@ -401,7 +435,7 @@ TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   const auto pngs = names_in(dir / "frames").size();
   EXPECT_GE(pngs, 11u);
   EXPECT_LT(pngs, 20000u);
-  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "run.toml"}));
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "movie.toml"}));
   const Decoded d = decode_movie(dir / "movie.mp4");
   EXPECT_EQ(d.frames, static_cast<int>(pngs)) << "every rendered frame is in the movie";
   EXPECT_NEAR(d.duration, pngs / 30.0, 1e-3);
