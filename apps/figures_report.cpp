@@ -1,0 +1,103 @@
+#include "apps/figures_report.h"
+
+#include <sstream>
+
+#include "analysis/json.h"
+#include "sim/atomic_file.h"
+#include "sim/format.h"
+
+namespace gs::app {
+namespace {
+
+// Which crossovers were found, and why the others were not.
+std::string crossover_notes(const Crossovers& x) {
+  std::ostringstream notes;
+  for (const auto& [d, points] : x.tc1)
+    for (const auto& p : points)
+      if (!p.crossover.found)
+        notes << "- t_c1 not found for d = " << d << ", " << p.label << ": " << p.crossover.note
+              << "\n";
+  for (const auto& p : x.tc2.front().second)
+    notes << "- t_c2(" << p.label << ") "
+          << (p.crossover.found ? "= " + figure_number(p.crossover.time)
+                                : "not found: " + p.crossover.note)
+          << " (2D, r = 0.1)\n";
+  return notes.str();
+}
+
+}  // namespace
+
+void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
+                           const std::vector<CaseResult>& results,
+                           const std::vector<Comparison>& cmp,
+                           const std::vector<std::string>& problems) {
+  std::ostringstream j;
+  j << "{\n  \"version\": " << json_string(GRAINSHOCK_VERSION)
+    << ",\n  \"mode\": " << json_string(to_string(run.mode)) << ",\n  \"seed\": " << run.seed
+    << ",\n  \"threads\": " << run.threads << ",\n  \"wall_seconds\": " << json_number(run.wall)
+    << ",\n  \"simulation_wall_seconds\": " << json_number(run.simulation_wall)
+    << ",\n  \"cases\": [\n";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const auto& c = results[k];
+    const auto& p = c.plan->spec.physics;
+    j << "    {\"name\": " << json_string(c.plan->name) << ", \"d\": " << p.dim
+      << ", \"r\": " << json_number(p.restitution) << ", \"particles\": " << p.particles
+      << ", \"t_max\": " << json_number(p.t_max) << ", \"realisations\": " << c.sums.count()
+      << ", \"wall_seconds\": " << json_number(c.wall)
+      << ", \"t_c1\": " << json_number(c.fits.tc1.time)
+      << ", \"t_c2\": " << json_number(c.fits.tc2.time)
+      << ", \"folder\": " << json_string("ensembles/" + c.plan->name) << "}"
+      << (k + 1 < results.size() ? "," : "") << "\n";
+  }
+  j << "  ],\n  \"comparisons\": " << comparisons_json(cmp) << ",\n  \"problems\": [";
+  for (std::size_t k = 0; k < problems.size(); ++k)
+    j << (k ? ", " : "") << json_string(problems[k]);
+  j << "]\n}\n";
+  write_file_atomic(dir / "summary.json", j.str());
+}
+
+void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,
+                          const std::vector<CaseResult>& results, const Crossovers& x,
+                          const std::vector<Comparison>& cmp,
+                          const std::vector<std::string>& problems) {
+  std::ostringstream md;
+  md << "# grainshock figures (" << to_string(run.mode) << ")\n\n"
+     << "Jabeen, Rajesh, Ray, EPL 2010, reproduced by `grainshock figures --" << to_string(run.mode)
+     << " --threads " << run.threads << " --seed " << run.seed << "` in "
+     << figure_number(run.wall, 4) << " s wall (" << figure_number(run.simulation_wall, 4)
+     << " s of simulation).\n\n## Runs\n\n"
+     << "| case | d | r | N | t_max (sim) | t_max (paper) | realisations | wall (s) "
+        "|\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    md << "| " << c.plan->name << " | " << p.dim << " | " << format_number(p.restitution) << " | "
+       << p.particles << " | " << figure_number(p.t_max) << " | "
+       << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
+       << figure_number(c.wall, 3) << " |\n";
+  }
+  md << "\nEach case's averaged time series, distributions and fits are in `ensembles/<case>/` "
+        "(see its summary.json for the windows and intervals); each exponent's row links the "
+        "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
+     << comparisons_markdown(cmp) << "\n## Definitions\n\n"
+     << definitions_markdown() << "\n## Notes\n\n"
+     << crossover_notes(x);
+  for (const auto& p : problems) md << "- problem: " << p << "\n";
+  md << "\n## Files\n\n"
+        "- fig1a_overlay_r0.1.png: active particles of one 2D r = 0.1 realisation at four times "
+        "(Fig. 1a); fig1b_elastic_r1.png: 2D r = 1 (Fig. 1b).\n"
+        "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
+        "- fig3_active_energy: <N_t>, <E_t> in 2D and 3D with the theory's slopes (Fig. 3).\n"
+        "- fig4_collapse_2d, fig5_collapse_3d: scaled P(R,t), P(v,t) for r = 0.1 (Figs. 4, 5).\n"
+        "- fig6_crossover: t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits.\n"
+        "- fig7_tc2_delta: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 fit.\n"
+        "- fig8_local_slopes_<case>: local slopes of N_t, E_t, R_t, R_front, dR_front/dt and "
+        "C_t with bootstrap bands, theory lines and plateau fits (CSV beside).\n"
+        "- fig9_packing: active-weighted distribution of the cell packing in 2D.\n"
+        "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
+        "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
+        "theory, agrees}.\n"
+        "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
+  write_file_atomic(dir / "report.md", md.str());
+}
+
+}  // namespace gs::app
