@@ -1,6 +1,6 @@
 // Speed of the snapshot files (issue 19): reading 2.5e5 particles from extended XYZ, a LAMMPS
-// dump and GSD to a ready Snapshot (text at >= 150 MB/s on 2 cores), and writing the snapshot
-// of a 2e6-sphere run (< 1 s, or a smaller file: GSD, or only the active particles).
+// dump and GSD to the first drawn pixel (text at >= 150 MB/s on 2 cores), and writing the
+// snapshot of a 2e6-sphere run (< 1 s, or a smaller file: GSD, or only the active particles).
 #include <unistd.h>
 
 #include <charconv>
@@ -9,7 +9,10 @@
 #include <random>
 
 #include "bench/bench.h"
+#include "render/field.h"
+#include "render/renderer.h"
 #include "sim/atomic_file.h"
+#include "sim/error.h"
 #include "sim/gsd.h"
 #include "sim/snapshot_file.h"
 #include "sim/snapshot_writer.h"
@@ -81,19 +84,32 @@ void write_dump(const fs::path& path, const Snapshot& s) {
 }
 
 // The best of three reads of the first frame to a ready Snapshot.
+// The best of three: the file read to a Snapshot, then drawn at 1920x1080 as `render` draws it
+// (the renderer's GL context made once before, as in a movie: its set-up is not the reader's).
 std::vector<Figure> read_case(const fs::path& path, const std::string& target) {
   const double bytes = static_cast<double>(fs::file_size(path));
-  double best = 1e300;
+  render::Renderer renderer;
+  render::View view;
+  view.width = 1920;
+  view.height = 1080;
+  double best_read = 1e300, best_total = 1e300;
   std::size_t n = 0;
   for (int rep = 0; rep < 3; ++rep) {
     const double t0 = wall_seconds();
     const Snapshot s = read_snapshot(path.string());
-    best = std::min(best, wall_seconds() - t0);
+    const double t1 = wall_seconds();
+    render::Style style;
+    style.field = render::default_field(s);
+    const render::Image img = renderer.render(s, style, view);
+    GS_CHECK(img.width == view.width);
+    best_read = std::min(best_read, t1 - t0);
+    best_total = std::min(best_total, wall_seconds() - t0);
     n = s.size();
   }
   fs::remove(path);
-  return {{"seconds", best, "s", ""},
-          {"megabytes_per_second", bytes / best / 1e6, "MB/s", target},
+  return {{"read_seconds", best_read, "s", ""},
+          {"read_megabytes_per_second", bytes / best_read / 1e6, "MB/s", target},
+          {"first_pixel_seconds", best_total, "s", "read + draw"},
           {"file_megabytes", bytes / 1e6, "MB", ""},
           {"particles", static_cast<double>(n), "", "2.5e5"}};
 }
@@ -119,19 +135,19 @@ std::vector<Figure> write_case(const Snapshot& s, bool gsd, bool active_only) {
 }  // namespace
 
 void add_io_cases(std::vector<Case>& cases) {
-  cases.push_back(
-      {"io/read_xyz_2.5e5", "extended XYZ of a 2D kick, 2.5e5 discs, to a Snapshot", false, [] {
-         const auto p = scratch("r.xyz");
-         write_xyz(p.string(), gas(2, 250000));
-         return read_case(p, ">= 150 MB/s");
-       }});
-  cases.push_back(
-      {"io/read_lammps_2.5e5", "LAMMPS dump custom of the same gas, to a Snapshot", false, [] {
-         const auto p = scratch("r.dump");
-         write_dump(p, gas(2, 250000));
-         return read_case(p, ">= 150 MB/s");
-       }});
-  cases.push_back({"io/read_gsd_2.5e5", "GSD of the same gas, to a Snapshot", false, [] {
+  cases.push_back({"io/read_xyz_2.5e5",
+                   "extended XYZ of a 2D kick, 2.5e5 discs, to the first drawn pixel", false, [] {
+                     const auto p = scratch("r.xyz");
+                     write_xyz(p.string(), gas(2, 250000));
+                     return read_case(p, ">= 150 MB/s");
+                   }});
+  cases.push_back({"io/read_lammps_2.5e5",
+                   "LAMMPS dump custom of the same gas, to the first drawn pixel", false, [] {
+                     const auto p = scratch("r.dump");
+                     write_dump(p, gas(2, 250000));
+                     return read_case(p, ">= 150 MB/s");
+                   }});
+  cases.push_back({"io/read_gsd_2.5e5", "GSD of the same gas, to the first drawn pixel", false, [] {
                      const auto p = scratch("r.gsd");
                      write_gsd(p.string(), gas(2, 250000));
                      return read_case(p, "");

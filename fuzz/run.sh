@@ -1,26 +1,37 @@
 #!/usr/bin/env bash
-# Builds the snapshot-reader fuzzers with clang-14's libFuzzer and AddressSanitizer and runs each
-# for SECONDS (default 120), seeded with assets/io. Findings land in build-fuzz/<format>/.
-#   bash fuzz/run.sh [SECONDS]
+# Builds the snapshot-reader fuzzers with clang-14's libFuzzer, AddressSanitizer and UBSan and
+# runs each for SECONDS (default 120), seeded with assets/io and what earlier runs found to be
+# new. Crashes, leaks and out-of-memory inputs land in build-fuzz/<format>/findings/; re-run one
+# with build-fuzz/fuzz_<format> FILE. Not part of the CMake build or CI (needs clang).
+#   bash fuzz/run.sh [SECONDS] [xyz|lammps|gsd ...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/build-fuzz
 seconds=${1:-120}
+shift || true
+formats=("$@")
+[ ${#formats[@]} -gt 0 ] || formats=(xyz lammps gsd)
 mkdir -p "$out"
 srcs=(sim/mapped_file.cpp sim/text_scan.cpp sim/xyz.cpp sim/lammps_dump.cpp sim/gsd.cpp
       sim/snapshot_file.cpp sim/error.cpp sim/atomic_file.cpp)
-for fmt in 1:xyz 2:lammps 3:gsd; do
-  id=${fmt%%:*} name=${fmt#*:}
+status=0
+for name in "${formats[@]}"; do
+  case $name in
+    xyz) id=1 seeds=("$root"/assets/io/*.xyz "$root"/assets/io/*.extxyz) ;;
+    lammps) id=2 seeds=("$root"/assets/io/*.lammpstrj) ;;
+    gsd) id=3 seeds=("$root"/assets/io/*.gsd) ;;
+    *) echo "unknown format '$name' (use xyz, lammps or gsd)" >&2; exit 2 ;;
+  esac
   clang++-14 -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -DFUZZ_FORMAT="$id" -I"$root" -isystem /usr/include/eigen3 \
     "$root/fuzz/fuzz_snapshot.cpp" "${srcs[@]/#/$root/}" -o "$out/fuzz_$name" -lpthread
   mkdir -p "$out/$name/corpus" "$out/$name/findings"
-  case $name in
-    xyz) cp "$root"/assets/io/*.xyz "$root"/assets/io/*.extxyz "$out/$name/corpus/" ;;
-    lammps) cp "$root"/assets/io/*.lammpstrj "$out/$name/corpus/" ;;
-    gsd) cp "$root"/assets/io/*.gsd "$out/$name/corpus/" ;;
-  esac
+  cp "${seeds[@]}" "$out/$name/corpus/"
   (cd "$out/$name/findings" &&
     "$out/fuzz_$name" -max_total_time="$seconds" -rss_limit_mb=2048 -max_len=65536 \
-      -print_final_stats=1 "$out/$name/corpus") || echo "fuzz_$name: a finding, see $out/$name/findings"
+      -print_final_stats=1 "$out/$name/corpus") || {
+    echo "fuzz_$name: a finding, see $out/$name/findings"
+    status=1
+  }
 done
+exit $status

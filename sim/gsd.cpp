@@ -138,6 +138,11 @@ GsdSource::GsdSource(MappedFile f) : file_(std::move(f)) {
         static_cast<std::uint64_t>(e.location) > size || e.m == 0 ||
         e.n > (size - e.location) / ts / e.m)
       fail(where + " (" + std::string(names_[e.id]) + ") points outside the file");
+    // Even an empty chunk (N = 0) cannot have more values per row than the file has bytes: a
+    // per-particle log chunk becomes M columns (found by fuzzing: M = 4e9 and N = 0).
+    if (e.m > size / ts)
+      fail(where + " (" + std::string(names_[e.id]) + ") has " + std::to_string(e.m) +
+           " values per row, more than the file holds");
     if (!index_.empty() && e.frame < index_.back().frame)
       fail(where + " is out of frame order: the index is corrupt");
     index_.push_back(e);
@@ -217,7 +222,14 @@ Snapshot GsdSource::read(std::size_t k) const {
   const double dims = scalar("configuration/dimensions", 3);
   if (dims != 2 && dims != 3) bad("configuration/dimensions is not 2 or 3");
   s.info.dim = static_cast<int>(dims);
-  s.info.step = static_cast<std::int64_t>(scalar("configuration/step", 0));
+  // Counts held as doubles (any chunk type is accepted) are checked before the integer cast.
+  auto count = [&](const char* name) {
+    const double v = scalar(name, 0);
+    if (!(v >= 0 && v < 0x1p53 && v == std::floor(v)))
+      bad(std::string(name) + " is not a count (" + std::to_string(v) + ")");
+    return static_cast<std::uint64_t>(v);
+  };
+  s.info.step = static_cast<std::int64_t>(count("configuration/step"));
   if (const Entry* t = find(k, "log/grainshock/time", false)) s.info.time = values(*t)[0];
   std::vector<double> box = {1, 1, 1, 0, 0, 0};
   if (const Entry* e = find(k, "configuration/box")) {
@@ -232,8 +244,7 @@ Snapshot GsdSource::read(std::size_t k) const {
     s.info.origin[a] = -box[a] / 2;  // HOOMD centres the box on the origin
   }
 
-  const double nd = scalar("particles/N", 0);
-  const auto n = static_cast<std::uint64_t>(nd);
+  const std::uint64_t n = count("particles/N");
   // N is believed only as far as the position chunk holds it.
   const Entry* pos = find(k, "particles/position");
   if (n > 0 && (!pos || pos->n != n || pos->m != 3))

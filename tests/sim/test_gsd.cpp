@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -147,6 +148,10 @@ TEST(Gsd, CorruptFilesAreRefusedInOneLine) {
   poke<std::uint64_t>(b, index_at + 8, 1ull << 40);  // entry 0 rows: past the end
   EXPECT_NE(error_of(b).find("outside the file"), std::string::npos) << error_of(b);
   b = good;
+  poke<std::uint64_t>(b, index_at + 8, 0);  // entry 0: no rows but 4e9 values per row
+  poke<std::uint32_t>(b, index_at + 24, 4294574081u);
+  EXPECT_NE(error_of(b).find("values per row"), std::string::npos) << error_of(b);
+  b = good;
   poke<std::uint16_t>(b, index_at + 28, 999);  // entry 0 names a chunk that is not there
   EXPECT_NE(error_of(b).find("index entry 0"), std::string::npos) << error_of(b);
   b = good;
@@ -164,9 +169,17 @@ TEST(Gsd, CorruptFilesAreRefusedInOneLine) {
     std::memcpy(&loc, good.data() + index_at + 32 * e + 16, 8);
     if (n == 1 && good.substr(loc, 4) == std::string("\x03\0\0\0", 4)) {  // particles/N = 3
       poke<std::uint32_t>(b, loc, 4000000000u);
-      const auto msg = error_of(b);
+      auto msg = error_of(b);
       EXPECT_NE(msg.find("particles/N"), std::string::npos) << msg;
       EXPECT_NE(msg.find("frame 0"), std::string::npos) << msg;
+      // The same chunk as a float: NaN, negative or fractional is not a count.
+      for (float bad : {std::nanf(""), -3.0f, 2.5f, 1e30f}) {
+        b = good;
+        poke<std::uint8_t>(b, index_at + 32 * e + 30, 9);  // F32
+        poke<float>(b, loc, bad);
+        msg = error_of(b);
+        EXPECT_NE(msg.find("particles/N is not a count"), std::string::npos) << bad << ": " << msg;
+      }
     }
   }
 }
