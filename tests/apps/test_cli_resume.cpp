@@ -200,15 +200,15 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
       "--dim 2 --particles 400 --t-max 30 --snapshot-times 10 --snapshot-format ovito-xyz --png "
       "--width 32 --height 32",
   };
-  int n = 0;
-  for (const std::string& args : runs) {
-    const auto a = scratch_dir("a" + std::to_string(n)), b = scratch_dir("b" + std::to_string(n));
-    ++n;
+  for (int n = 0; const std::string& args : runs) {
+    const std::string tag = std::to_string(n++);
+    const auto a = scratch_dir("a" + tag), b = scratch_dir("b" + tag);
     ASSERT_EQ(grainshock("run " + args + " --quiet --out " + a.string()).exit_code, 0) << args;
     const std::string toml = read_file(a / "run.toml");
     for (const std::string& flag : run_flags())
       if (!not_results.contains(flag)) {
-        EXPECT_NE(toml.find("\n" + flag.substr(2) + " = "), std::string::npos) << flag;
+        const std::string line = flag.substr(2) + " = ";
+        EXPECT_NE(toml.find("\n" + line), std::string::npos) << flag;
       }
     const auto r =
         grainshock("run --quiet --config " + (a / "run.toml").string() + " --out " + b.string());
