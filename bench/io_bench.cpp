@@ -33,7 +33,7 @@ Snapshot gas(int dim, std::size_t n) {
   s.info.time = 5000;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, side), v(-1, 1);
-  s.position.resize(n);
+  s.position.assign(n, Eigen::Vector3d::Zero());
   s.velocity.assign(n, Eigen::Vector3d::Zero());
   s.radius.assign(n, 0.5);
   s.active.assign(n, 0);

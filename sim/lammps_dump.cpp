@@ -1,5 +1,6 @@
 #include "sim/lammps_dump.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -239,7 +240,10 @@ Snapshot DumpSource::read(std::size_t k) const {
   if (velocity) s.velocity.assign(n, Eigen::Vector3d::Zero());
   if (has_radius) s.radius.resize(n);
   for (auto& col : s.columns) col.values.resize(n);
-  Eigen::Vector3d img = Eigen::Vector3d::Zero();
+  // Image flags per row, so that the two halves of a large frame can be scanned at once.
+  const bool has_image = std::any_of(slots.begin(), slots.end(),
+                                     [](const Slot& sl) { return sl.kind == Slot::Image; });
+  std::vector<Eigen::Vector3d> img(has_image ? n : 0, Eigen::Vector3d::Zero());
   bool scaled[3] = {form_of[0] % 2 == 1, form_of[1] % 2 == 1, form_of[2] % 2 == 1};
   const Eigen::Vector3d edge = f.hi - f.lo;
   const std::string_view b = file_.bytes();
@@ -257,7 +261,7 @@ Snapshot DumpSource::read(std::size_t k) const {
           case Slot::Image: {
             std::int64_t v = 0;
             if (!parse_integer(tok, v)) fail(line, not_a(tok, "an integer", names[t]));
-            img[sl.axis] = static_cast<double>(v);
+            img[i][sl.axis] = static_cast<double>(v);
             break;
           }
           case Slot::Vel:
@@ -283,9 +287,10 @@ Snapshot DumpSource::read(std::size_t k) const {
           if (chosen[a] < 0) continue;
           double& x = s.position[i][a];
           if (scaled[a]) x = f.lo[a] + x * edge[a];
-          if (form_of[a] >= 2) x += img[a] * edge[a];
+          if (form_of[a] >= 2 && has_image) x += img[i][a] * edge[a];
         }
-      });
+      },
+      true);
   return s;
 }
 

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cstring>
+#include <exception>
 #include <string>
 #include <string_view>
+#include <thread>
 
 namespace gs {
 
@@ -91,38 +93,64 @@ class LineCursor {
 
 // The particle lines of a frame: `rows` lines of exactly `columns` tokens from `body` on, the
 // first of them line number `first_line`. Calls token(i, t, tok, line) for column t of row i,
-// then row_done(i, line). A missing or extra token is an error naming the line.
+// then row_done(i, line). A missing or extra token is an error naming the line. With `split`,
+// a frame of many rows is scanned in two halves on two threads (the callbacks then must touch
+// row i's data only); an error in both is reported for the earlier line, as one pass would.
 template <class Token, class RowDone>
 void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std::size_t first_line,
-               const std::string& path, Token&& token, RowDone&& row_done) {
-  const char* p = body.data();
+               const std::string& path, Token&& token, RowDone&& row_done, bool split = false) {
   const char* const end = body.data() + body.size();
-  for (std::size_t i = 0; i < rows; ++i) {
-    const std::size_t line = first_line + i;
-    const char* eol = p < end ? static_cast<const char*>(std::memchr(p, '\n', end - p)) : end;
-    if (!eol) eol = end;
-    const char* q = p;
-    std::size_t t = 0;
-    for (; t < columns; ++t) {
+  auto scan = [&](std::size_t from, std::size_t to, const char* p) {
+    for (std::size_t i = from; i < to; ++i) {
+      const std::size_t line = first_line + i;
+      const char* eol = p < end ? static_cast<const char*>(std::memchr(p, '\n', end - p)) : end;
+      if (!eol) eol = end;
+      const char* q = p;
+      std::size_t t = 0;
+      for (; t < columns; ++t) {
+        while (q < eol && is_space(*q)) ++q;
+        if (q == eol) break;
+        const char* te = q;
+        while (te < eol && !is_space(*te)) ++te;
+        token(i, t, std::string_view(q, te - q), line);
+        q = te;
+      }
       while (q < eol && is_space(*q)) ++q;
-      if (q == eol) break;
-      const char* te = q;
-      while (te < eol && !is_space(*te)) ++te;
-      token(i, t, std::string_view(q, te - q), line);
-      q = te;
+      if (t < columns || q != eol) {
+        std::size_t found = t, j = 0;
+        const std::string_view rest(q, eol - q);
+        while (!next_token(rest, j).empty()) ++found;
+        throw_at_line(
+            path, line,
+            "expected " + std::to_string(columns) + " columns, found " + std::to_string(found));
+      }
+      row_done(i, line);
+      p = eol + 1;
     }
-    while (q < eol && is_space(*q)) ++q;
-    if (t < columns || q != eol) {
-      std::size_t found = t, j = 0;
-      const std::string_view rest(q, eol - q);
-      while (!next_token(rest, j).empty()) ++found;
-      throw_at_line(
-          path, line,
-          "expected " + std::to_string(columns) + " columns, found " + std::to_string(found));
+  };
+  // Below this a second thread costs more than it saves.
+  constexpr std::size_t kSplitRows = 1 << 15;
+  if (!split || rows < kSplitRows) return scan(0, rows, body.data());
+  const std::size_t mid = rows / 2;
+  LineCursor c(body);
+  c.skip(mid);  // memchr over half the frame: a small part of parsing it
+  std::exception_ptr second;
+  std::thread other([&] {
+    try {
+      scan(mid, rows, body.data() + c.pos());
+    } catch (...) {
+      second = std::current_exception();
     }
-    row_done(i, line);
-    p = eol + 1;
+  });
+  std::exception_ptr first;
+  try {
+    scan(0, mid, body.data());
+  } catch (...) {
+    first = std::current_exception();
   }
+  other.join();
+  if (first) std::rethrow_exception(first);
+  if (second) std::rethrow_exception(second);
 }
 // The finite number `tok` is, or an error at that line naming the column.
 double finite_at(const std::string& path, std::size_t line, std::string_view tok,

@@ -403,7 +403,8 @@ Snapshot XyzSource::read(std::size_t k) const {
           if (s.position[i][c] != 0 || (velocity && s.velocity[i][c] != 0))
             fail(line_no,
                  "the file is " + std::to_string(stated) + "D but a component beyond it is not 0");
-      });
+      },
+      true);
   if (!mass.empty())
     for (std::size_t i = 0; i < n; ++i) s.velocity[i] /= mass[i];
   return s;

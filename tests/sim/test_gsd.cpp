@@ -92,6 +92,28 @@ TEST(Gsd, OurWriterReadsBack) {
   EXPECT_EQ(t.first_collision, s.first_collision);
 }
 
+// Chunks at the schema's defaults (image 0, diameter 1) are not written; reading gives the same.
+TEST(Gsd, DefaultChunksAreLeftOut) {
+  Snapshot s = sample();
+  s.position[2] = {15, 3, 0};  // every particle inside the box
+  s.radius.assign(3, 0.5);
+  const auto path = out_path("defaults.gsd");
+  write_gsd(path, s);
+  const std::string bytes = slurp(path);
+  EXPECT_EQ(bytes.find("particles/image"), std::string::npos);
+  EXPECT_EQ(bytes.find("particles/diameter"), std::string::npos);
+  const Snapshot t = read_snapshot(path);
+  EXPECT_EQ(t.radius, s.radius);
+  // Relative to the box corner (ours at 0, GSD's at -L/2); float32 of numbers exact in binary.
+  for (std::size_t i = 0; i < s.size(); ++i)
+    EXPECT_EQ(t.position[i] - t.info.origin, s.position[i]) << i;
+  s.position[2] = {45, -3, 0};
+  write_gsd(path, s);
+  EXPECT_NE(slurp(path).find("particles/image"), std::string::npos);
+  const Snapshot u = read_snapshot(path);
+  EXPECT_EQ(u.position[2] - u.info.origin, Eigen::Vector3d(45, -3, 0));
+}
+
 TEST(Gsd, TheGsdModuleReadsOurs) {
   if (!have_python_gsd()) GTEST_SKIP() << "/usr/bin/python3 with the gsd module is not installed";
   const auto path = out_path("for_python.gsd");

@@ -161,6 +161,46 @@ TEST(ExtXyz, NonFiniteAndMalformedValues) {
   EXPECT_NE(error_of(head + "X 1 1 1 0 0 0 7\n").find("found 8"), std::string::npos);
 }
 
+// Frames of many rows are scanned in two halves at once (sim/text_scan.h): the values are the
+// same as one pass gives, and of two bad lines the earlier one is named.
+TEST(SnapshotFile, LargeFramesReadInTwoHalvesAsInOnePass) {
+  const int n = 100000;  // above the split threshold of 2^15 rows
+  std::string xyz = std::to_string(n) + "\nProperties=species:S:1:pos:R:3:velo:R:3\n";
+  std::string dump = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" + std::to_string(n) +
+                     "\nITEM: BOX BOUNDS pp pp pp\n0 10\n0 10\n0 10\nITEM: ATOMS id x y z ix iy "
+                     "iz vx\n";
+  for (int i = 0; i < n; ++i) {
+    const std::string x = std::to_string(i % 1000) + ".25", y = std::to_string(i / 1000);
+    xyz += "X " + x + " " + y + " 1 " + std::to_string(i) + " 0 -1\n";
+    dump += std::to_string(i + 1) + " " + std::to_string(i % 10) + " 1 2 " +
+            std::to_string(i % 3 - 1) + " 0 0 " + std::to_string(i) + "\n";
+  }
+  const Snapshot a = from_text(xyz).read(0);
+  ASSERT_EQ(a.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < n; i += 997) {
+    EXPECT_EQ(a.position[i], Eigen::Vector3d(i % 1000 + 0.25, i / 1000, 1)) << i;
+    EXPECT_EQ(a.velocity[i], Eigen::Vector3d(i, 0, -1)) << i;
+  }
+  const Snapshot d = open_snapshots(MappedFile::from_bytes("big.dump", dump)).read(0);
+  ASSERT_EQ(d.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < n; i += 997) {  // x unwrapped by its own row's image flag
+    EXPECT_EQ(d.position[i].x(), i % 10 + 10.0 * (i % 3 - 1)) << i;
+    EXPECT_EQ(d.velocity[i].x(), i) << i;
+  }
+  // Line numbers: the count and comment lines come first, so row i is line i + 3.
+  auto spoil = [&](std::string text, std::vector<int> rows) {
+    for (int r : rows) {
+      std::size_t at = 0;
+      for (int k = 0; k < r + 2; ++k) at = text.find('\n', at) + 1;
+      text.replace(at, 1, "Y 0 zz");  // "X 1.25 ..." becomes "Y 0 zz1.25 ...": not a number
+    }
+    return error_of(text);
+  };
+  EXPECT_NE(spoil(xyz, {80000}).find("line 80003"), std::string::npos) << spoil(xyz, {80000});
+  EXPECT_NE(spoil(xyz, {10, 80000}).find("line 13:"), std::string::npos);
+  EXPECT_NE(spoil(xyz, {49999, 50000}).find("line 50002:"), std::string::npos);
+}
+
 TEST(SnapshotFile, UnknownContentIsNamed) {
   const auto msg = error_of("hello world\n1 2 3\n");
   EXPECT_NE(msg.find("mem.xyz"), std::string::npos) << msg;
