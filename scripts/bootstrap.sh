@@ -15,8 +15,9 @@ packages=(
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
 )
-# Optional for users, installed for the tests so that CI runs them: MPI ensembles.
-if [ "$mode" = test ]; then packages+=(libopenmpi-dev openmpi-bin); fi
+# Optional for users, installed for the tests so that CI runs them: MPI ensembles; ASE, gsd
+# and LAMMPS reading and writing snapshot files with ours (tests/sim/test_interop.cpp).
+if [ "$mode" = test ]; then packages+=(libopenmpi-dev openmpi-bin python3-ase python3-gsd lammps); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -148,6 +148,9 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --seed -1", "--seed"},
       {"run --cutoff inf", "--cutoff"},
       {"run --lattice inf --dim 1", "--lattice"},
+      {"run --snapshot-format pdb", "--snapshot-format"},
+      {"run --snapshot-particles moving", "--snapshot-particles"},
+      {"run --dim 1 --particles 100 --snapshot-format gsd", "use xyz in 1D"},
   };
   for (const auto& [args, names] : cases) {
     const auto r = grainshock(args + out);
