@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -416,11 +417,10 @@ void append_number(std::string& out, double x) {
   out.append(buf, end);
 }
 
-// Particle lines [begin, end) of the file, numbers in shortest round-trip form.
-std::string particle_lines(const Snapshot& s, std::size_t begin, std::size_t end, int pos_count,
-                           const std::vector<const Column*>& extra) {
-  std::string out;
-  out.reserve((end - begin) * (32 + 20 * pos_count * (s.has_velocity() ? 2 : 1)));
+// Appends particle lines [begin, end) of the file to `out`, numbers in shortest round-trip form.
+void append_particle_lines(std::string& out, const Snapshot& s, std::size_t begin, std::size_t end,
+                           int pos_count, const std::vector<const Column*>& extra) {
+  out.reserve(out.size() + (end - begin) * (32 + 20 * pos_count * (s.has_velocity() ? 2 : 1)));
   char buf[32];
   auto num = [&](double x) {
     out += ' ';
@@ -438,7 +438,6 @@ std::string particle_lines(const Snapshot& s, std::size_t begin, std::size_t end
     for (const Column* c : extra) num(c->values[i]);
     out += '\n';
   }
-  return out;
 }
 
 }  // namespace
@@ -515,12 +514,25 @@ void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
   // has two cores), then the pieces go out in order.
   const std::size_t half = n > 100000 ? n / 2 : n;
   std::string second;
+  std::exception_ptr failed;
   std::thread helper;
   if (half < n)
-    helper = std::thread([&] { second = particle_lines(s, half, n, pos_count, extra); });
+    helper = std::thread([&] {
+      try {
+        append_particle_lines(second, s, half, n, pos_count, extra);
+      } catch (...) {  // bad_alloc: rethrown below, not std::terminate
+        failed = std::current_exception();
+      }
+    });
   std::string out = std::move(head);
-  out += particle_lines(s, 0, half, pos_count, extra);
+  try {
+    append_particle_lines(out, s, 0, half, pos_count, extra);
+  } catch (...) {
+    if (helper.joinable()) helper.join();
+    throw;
+  }
   if (helper.joinable()) helper.join();
+  if (failed) std::rethrow_exception(failed);
   out += second;
   write_file_atomic(path, out);
 }
