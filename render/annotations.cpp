@@ -6,7 +6,7 @@ Annotations annotate(Image& img, const Scene& sc, OverlayPainter& painter) {
   Annotations a;
   const Style& st = sc.style;
   const OverlayColours oc{sc.palette.text, sc.palette.background};
-  const Colormap cmap = Colormap::by_name(st.colormap);
+  const Colormap cmap = picture_colormap(st);
   if (sc.overlay) {
     if (st.legend) {
       painter.legend(img, sc.legend, oc);

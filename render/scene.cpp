@@ -76,6 +76,10 @@ Palette palette(Background b) {
   return {{255, 255, 255}, {20, 20, 20}, {206, 206, 206}};
 }
 
+Colormap picture_colormap(const Style& style) {
+  return Colormap::by_name(style.colormap).against(palette(style.background).background);
+}
+
 Rgb8 overlay_colour(std::size_t index) {
   static const Rgb8 k[] = {{0, 114, 178}, {230, 159, 0},  {0, 158, 115}, {204, 121, 167},
                            {213, 94, 0},  {86, 180, 233}, {240, 228, 66}};
@@ -105,7 +109,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   GS_CHECK(!snaps.empty());
   Scene sc;
   sc.style = style;
-  const Colormap cmap = Colormap::by_name(style.colormap);
+  const Colormap cmap = picture_colormap(style);
   const int dim = sc.dim = snaps.front()->info.dim;
   for (const Snapshot* s : snaps)
     if (s->info.dim != dim)

@@ -24,6 +24,9 @@ struct Palette {
   Rgb8 background, text, inactive;
 };
 Palette palette(Background b);
+// The style's colormap as pictures use it: the part that stands out from the background
+// (Colormap::against). Scenes, their overlays and measures of a picture take this one.
+Colormap picture_colormap(const Style& style);
 
 // One particle as drawn: centre relative to the camera origin (kept in double until then, so
 // unwrapped coordinates far from 0 keep their precision on the GPU), radius, colour.

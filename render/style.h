@@ -27,11 +27,9 @@ enum class Scale { Linear, Log };
 enum class Background { Light, Dark };
 
 struct Style {
-  // Magma on white: its low end (black) and its high end (cream) both stand out from the
-  // background, and the band's edges keep their colours through a movie's 4:2:0 chroma
-  // subsampling (issue 18's edge contrast of the Fig. 1 job's last frame at 1280x720, H.264
-  // CRF 18: magma/light +0.16, viridis/light +0.11, viridis/dark +0.15 but its low end is lost
-  // on near-black).
+  // Magma on white, without its cream end (Colormap::against): black to light orange all
+  // stand out from the background, and its colours differ in lightness, which a movie's 4:2:0
+  // chroma subsampling keeps, where viridis's greens and yellows differ more in hue.
   std::string colormap = "magma";
   Field field = Field::Speed;
   std::string column;  // the Snapshot::columns name when field is Column

@@ -8,10 +8,10 @@
 #include "render/colormap.h"
 #include "render/contrast.h"
 #include "render/field.h"
+#include "render/image_compare.h"
 #include "render/renderer.h"
 #include "sim/engine.h"
 #include "sim/error.h"
-#include "render/image_compare.h"
 #include "tests/render/golden.h"
 
 namespace gs::render {
@@ -185,7 +185,7 @@ TEST(RenderContrast, SmallKickShowsTheFastInnerEdge) {
   ASSERT_EQ(st.field, Field::ScaledSpeed);
   st.inset = true;
   const Image img = renderer().render(s, st, small_view(640, 480));
-  const auto pts = shaded_pixels(img, Colormap::by_name(st.colormap), renderer().last().panels);
+  const auto pts = shaded_pixels(img, picture_colormap(st), renderer().last().panels);
   ASSERT_GT(pts.size(), 2000u);
   EXPECT_GE(edge_contrast(pts), 0.12);
 }
@@ -232,7 +232,7 @@ TEST(RenderStructure, IsolatedDiscCentreHasItsColormapColour) {
     const View v = small_view();
     const Image img = renderer().render(s, st, v);
     const auto [x, y] = pixel_of(s.position[0], v);
-    expect_colour(img.pixel(x, y), Colormap::by_name(name).at8(0.25), name);
+    expect_colour(img.pixel(x, y), picture_colormap(st).at8(0.25), name);
   }
 }
 
@@ -258,7 +258,7 @@ TEST(RenderStructure, ColourBarRunsFromLowToHighColour) {
   const BarRect r = renderer().last().colorbar;
   ASSERT_GT(r.x1 - r.x0, 2);
   ASSERT_GT(r.y1 - r.y0, 20);
-  const Colormap cm = Colormap::by_name("inferno");
+  const Colormap cm = picture_colormap(st);
   const int xm = (r.x0 + r.x1) / 2;
   expect_colour(img.pixel(xm, r.y1 - 1), cm.at8(0), "bottom of the bar");
   expect_colour(img.pixel(xm, r.y0), cm.at8(1), "top of the bar");

@@ -183,5 +183,59 @@ TEST(EdgeContrast, PixelsMapBackToTheirColormapPosition) {
   EXPECT_EQ(some.size(), 24u * 8) << "excluded rectangles are left out";
 }
 
+// WCAG 2.1 relative luminance of an 8-bit sRGB colour, written out independently of colormap.cpp.
+double wcag_luminance(const Rgb8& c) {
+  double y = 0;
+  const double w[3] = {0.2126, 0.7152, 0.0722};
+  for (int k = 0; k < 3; ++k) {
+    const double u = c[k] / 255.0;
+    y += w[k] * (u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4));
+  }
+  return y;
+}
+
+double contrast_ratio(const Rgb8& a, const Rgb8& b) {
+  const double x = wcag_luminance(a), y = wcag_luminance(b);
+  return (std::max(x, y) + 0.05) / (std::min(x, y) + 0.05);
+}
+
+// A picture's colormap keeps the part that stands out from its background by 1.5:1. Grey on white
+// has an answer in closed form: luminance 0.65 ((1 + 0.05) / (0.65 + 0.05) = 1.5), the sRGB
+// value 1.055 * 0.65^(1 / 2.4) - 0.055 = 0.830; the tolerance is the search's step (1/1020) plus
+// the 8-bit rounding of the grey levels around it.
+TEST(PictureColormap, KeepsThePartThatStandsOutFromTheBackground) {
+  const Rgb8 white = palette(Background::Light).background;
+  const Rgb8 dark = palette(Background::Dark).background;
+  const auto grey = Colormap::by_name("grey").against(white).span();
+  EXPECT_EQ(grey.first, 0);
+  EXPECT_NEAR(grey.second, 1.055 * std::pow(0.65, 1 / 2.4) - 0.055, 1.0 / 1020 + 1.0 / 255);
+  for (const std::string name : {"magma", "viridis", "inferno"})
+    for (const Rgb8 bg : {white, dark}) {
+      Style st;
+      st.colormap = name;
+      st.background = bg == white ? Background::Light : Background::Dark;
+      const Colormap c = picture_colormap(st);
+      const auto [lo, hi] = c.span();
+      EXPECT_LT(lo, hi) << name;
+      EXPECT_GE(contrast_ratio(c.at8(0), bg), 1.49) << name << " low end";
+      EXPECT_GE(contrast_ratio(c.at8(1), bg), 1.49) << name << " high end";
+      // Just beyond a cut end, the full map no longer stands out.
+      const Colormap full = Colormap::by_name(name);
+      if (lo > 0) {
+        EXPECT_LT(contrast_ratio(full.at8(lo - 0.01), bg), 1.5) << name;
+      }
+      if (hi < 1) {
+        EXPECT_LT(contrast_ratio(full.at8(hi + 0.01), bg), 1.5) << name;
+      }
+    }
+  // Magma's cream end is cut on white, its black end on the dark background.
+  Style magma;
+  EXPECT_NEAR(picture_colormap(magma).span().second, 0.88, 0.02);
+  EXPECT_EQ(picture_colormap(magma).span().first, 0);
+  magma.background = Background::Dark;
+  EXPECT_EQ(picture_colormap(magma).span().second, 1);
+  EXPECT_NEAR(picture_colormap(magma).span().first, 0.23, 0.02);
+}
+
 }  // namespace
 }  // namespace gs::render
