@@ -23,7 +23,8 @@ std::unique_ptr<FrameSource> open_gsd(MappedFile file);
 // One frame in the hoomd schema (positions, velocities and diameters as 32-bit floats, as the
 // schema has them, so this is a picture of the state rather than an exact record), plus
 // log/particles/active, log/particles/first_collision and log/grainshock/time. Positions are
-// wrapped into the box centred on the origin with the image counts beside them, as HOOMD wants.
+// wrapped into the box centred on the origin with the image counts beside them, as HOOMD wants;
+// image and diameter are left out when all are the schema's defaults (0 and 1).
 void write_gsd(const std::string& path, const Snapshot& s);
 
 }  // namespace gs
