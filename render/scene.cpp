@@ -259,8 +259,11 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   for (std::size_t k = 0; k < snaps.size(); ++k) {
     const Snapshot& s = *snaps[k];
     const Rgb8 time_colour = overlay_colour(k);
+    // Before the first collision nothing is active (DESIGN: active = has collided), but the
+    // kicked particle moves: it is drawn, so that no frame of a kick is empty.
+    const bool moving_instead = !any_active(s) && s.has_velocity();
     for (std::size_t i = 0; i < s.size(); ++i) {
-      if (!s.active[i]) continue;
+      if (!s.active[i] && !(moving_instead && s.velocity[i].squaredNorm() > 0)) continue;
       if (overlay || std::isnan(values[i])) {
         push(wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);
         continue;

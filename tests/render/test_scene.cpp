@@ -91,6 +91,22 @@ TEST(Scene, ScaledSpeedIsOverTheActiveRmsAndUsesTheFixedRange) {
   EXPECT_TRUE(sp.bar_note.empty());
 }
 
+// Before the first collision only the kicked particle moves and none is active: it is drawn,
+// at v / v_rms = 1 of its own speed, and the particles at rest are not.
+TEST(Scene, TheKickedParticleIsDrawnBeforeTheFirstCollision) {
+  Snapshot s = ring(2, 1);
+  for (auto& a : s.active) a = 0;
+  for (auto& v : s.velocity) v.setZero();
+  s.velocity[5] = Eigen::Vector3d(0.6, 0.8, 0);
+  Style st;
+  st.field = Field::ScaledSpeed;
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  ASSERT_EQ(sc.sprites.size(), 1u);
+  EXPECT_NEAR(sc.v_rms, 1.0, 1e-12);
+  const auto [lo, hi] = sc.range;
+  EXPECT_NEAR(sc.shade.front(), (1.0 - lo) / (hi - lo), 1e-6);
+}
+
 TEST(Scene, ScaledRadialVelocityIsRelativeToTheDrift) {
   Snapshot s = ring(1, 1);
   for (std::size_t i = 0; i < s.size(); ++i)
