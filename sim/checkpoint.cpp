@@ -221,6 +221,7 @@ void CheckpointReader::corrupt() const {
 
 void CheckpointReader::bytes(void* p, std::size_t n) {
   if (n > remaining()) corrupt();
+  if (n == 0) return;  // p may be an empty vector's null data(), which memcpy must not get
   std::memcpy(p, data_ + pos_, n);
   pos_ += n;
 }

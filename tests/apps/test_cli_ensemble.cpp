@@ -322,9 +322,12 @@ TEST(CliEnsemble, AFailedRealisationIsNamedAndTheOthersAreKept) {
 
 #ifdef GRAINSHOCK_MPIEXEC
 // More ranks than cores (--oversubscribe), as root in CI containers, and without the shared-memory
-// single copy that containers without ptrace rights refuse (Open MPI's vader CMA).
+// single copy that containers without ptrace rights refuse (Open MPI's vader CMA). In sanitizer
+// builds the ranks skip leak checking: Open MPI 4.1's plugins leak at MPI_Finalize and are
+// unloaded before LeakSanitizer looks, so no suppression can name them; the same ensemble code is
+// leak-checked on the threaded path. (The variable means nothing to other builds.)
 std::string mpirun(int ranks) {
-  std::string cmd = "OMPI_MCA_btl_vader_single_copy_mechanism=none " +
+  std::string cmd = "ASAN_OPTIONS=detect_leaks=0 OMPI_MCA_btl_vader_single_copy_mechanism=none " +
                     std::string(GRAINSHOCK_MPIEXEC) + " -n " + std::to_string(ranks) +
                     " --oversubscribe";
   if (::geteuid() == 0) cmd += " --allow-run-as-root";
