@@ -12,16 +12,14 @@
 #include <fstream>
 
 #include "sim/error.h"
+#include "tests/sim/test_output.h"
 
 namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string out_path(const std::string& name) {
-  fs::create_directories(GRAINSHOCK_TEST_OUTPUT_DIR);
-  return std::string(GRAINSHOCK_TEST_OUTPUT_DIR) + "/" + name;
-}
+using test::out_path;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -11,16 +11,14 @@
 #include <fstream>
 
 #include "sim/error.h"
+#include "tests/sim/test_output.h"
 
 namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string out_path(const std::string& name) {
-  fs::create_directories(GRAINSHOCK_TEST_OUTPUT_DIR);
-  return std::string(GRAINSHOCK_TEST_OUTPUT_DIR) + "/" + name;
-}
+using test::out_path;
 
 std::string write_text(const std::string& name, const std::string& text) {
   const auto p = out_path(name);
