@@ -352,6 +352,7 @@ int run_job(const RunOptions& o, bool resume) {
     if (!o.quiet) std::fprintf(stderr, "grainshock: movie of the front\n");
     stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
   }
+  loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));
   write_file_atomic(dir / "timing.json", timing_json(loop->timing(), seconds_since(t2), sim));

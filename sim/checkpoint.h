@@ -46,8 +46,12 @@ class CheckpointWriter {
     bytes(v.data(), v.size() * sizeof(T));
   }
   void string(const std::string& s);
-  // Writes length and checksum, syncs, and puts the file in place. Throws UserError naming the
-  // file and the OS reason; then nothing replaces the earlier checkpoint.
+  // Writes what is buffered, the length and the checksum: the file is whole but neither on
+  // disk for sure nor in place. Nothing can be added after.
+  void finish();
+  // finish(), then syncs and puts the file in place. Throws UserError naming the file and the
+  // OS reason; then nothing replaces the earlier checkpoint. It touches only the file, so it may
+  // run on another thread than the one that wrote the state.
   void commit();
   std::uint64_t size() const { return written_; }
 
@@ -58,6 +62,7 @@ class CheckpointWriter {
   int fd_ = -1;
   std::vector<unsigned char> buffer_;
   std::uint64_t written_ = 0, hash_ = 0;
+  bool finished_ = false;
 };
 
 // Reads a whole checkpoint, refusing (UserError, one line naming the file) a file that is not

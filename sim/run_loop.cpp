@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "sim/error.h"
 #include "sim/format.h"
@@ -148,26 +149,34 @@ std::unique_ptr<RunLoop> RunLoop::resume(const RunPlan& plan, const std::filesys
 
 void RunLoop::write_checkpoint() {
   const double t0 = wall_now();
-  CheckpointWriter out(checkpoint_path(dir_), previous_checkpoint_path(dir_),
-                       {plan_.physics.dim, static_cast<std::uint64_t>(plan_.physics.particles)});
-  out.string(spec_);
-  out.value(static_cast<std::uint64_t>(next_));
-  out.value(static_cast<std::uint64_t>(next_snap_));
-  out.value(stage_);
-  out.value(csv_.size());
-  out.value(static_cast<std::uint64_t>(times_.size()));
+  finish_checkpoint();  // one in flight at a time: each commit moves the last one to previous
+  auto out = std::make_unique<CheckpointWriter>(
+      checkpoint_path(dir_), previous_checkpoint_path(dir_),
+      CheckpointIdentity{plan_.physics.dim, static_cast<std::uint64_t>(plan_.physics.particles)});
+  out->string(spec_);
+  out->value(static_cast<std::uint64_t>(next_));
+  out->value(static_cast<std::uint64_t>(next_snap_));
+  out->value(stage_);
+  out->value(csv_.size());
+  out->value(static_cast<std::uint64_t>(times_.size()));
   RunTiming timing = timing_;
   ++timing.checkpoints_written;
-  out.value(timing);
-  recorder_.save(out);
-  sim_->save(out);
-  out.commit();
+  out->value(timing);
+  recorder_.save(*out);
+  sim_->save(*out);
+  out->finish();
+  committing_ = std::async(std::launch::async, [out = std::move(out)] { out->commit(); });
   timing_.checkpoints_written = timing.checkpoints_written;
   last_checkpoint_ = wall_now();
   timing_.checkpoints += last_checkpoint_ - t0;
 }
 
-void RunLoop::remove_checkpoints() const {
+void RunLoop::finish_checkpoint() {
+  if (committing_.valid()) committing_.get();
+}
+
+void RunLoop::remove_checkpoints() {
+  finish_checkpoint();
   std::error_code ec;
   std::filesystem::remove(checkpoint_path(dir_), ec);
   std::filesystem::remove(previous_checkpoint_path(dir_), ec);
@@ -187,7 +196,10 @@ bool RunLoop::run(double until) {
       if (stop || (checkpoint_every > 0 && wall_now() - last_checkpoint_ >= checkpoint_every)) {
         pause();
         write_checkpoint();
-        if (stop) return false;
+        if (stop) {
+          finish_checkpoint();  // what the stop leaves behind is on disk before the exit
+          return false;
+        }
         go_on();
       }
     }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,8 +82,13 @@ class RunLoop {
   // What the caller has done after sampling (0: nothing yet), kept in checkpoints for resume.
   std::uint32_t stage() const { return stage_; }
   void set_stage(std::uint32_t s) { stage_ = s; }
+  // Writes the state and returns; the file's sync and renames (most of a big checkpoint's
+  // time, and the disk's rather than the CPU's) go on beside the run, the previous checkpoint
+  // staying in place until the new one is whole on disk.
   void write_checkpoint();
-  void remove_checkpoints() const;
+  // Waits for the last checkpoint to be on disk and in place; rethrows its UserError.
+  void finish_checkpoint();
+  void remove_checkpoints();
 
   const Simulation& simulation() const { return *sim_; }
   const RunTiming& timing() const { return timing_; }
@@ -104,6 +110,8 @@ class RunLoop {
   Snapshot snapshot_, kept_;  // reused (kept_: the active particles of snapshot_)
   RunTiming timing_;
   double last_checkpoint_ = 0;  // wall clock of the last one, seconds of steady_clock
+  // The last checkpoint's CheckpointWriter::commit(); its destructor waits for it.
+  std::future<void> committing_;
 };
 
 }  // namespace gs
