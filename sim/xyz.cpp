@@ -533,8 +533,7 @@ void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
   }
   if (helper.joinable()) helper.join();
   if (failed) std::rethrow_exception(failed);
-  out += second;
-  write_file_atomic(path, out);
+  write_file_atomic(path, {out, second});
 }
 
 }  // namespace gs
