@@ -148,8 +148,11 @@ GsdSource::GsdSource(MappedFile f) : file_(std::move(f)) {
     index_.push_back(e);
   }
   if (index_.empty()) fail("a GSD file without frames");
-  if (index_.back().frame >= std::numeric_limits<std::size_t>::max())
-    fail("the index counts too many frames");
+  // Frames without a chunk are legal, but a file of more frames than chunks is an index that
+  // lies (a reader would play on frame 0's data for ever).
+  if (index_.back().frame >= index_.size())
+    fail("the index names frame " + std::to_string(index_.back().frame) + " but holds only " +
+         std::to_string(index_.size()) + " chunks: it is corrupt");
   frames_ = static_cast<std::size_t>(index_.back().frame) + 1;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // The bytes of an input file, memory-mapped read-only so that a reader can index a file of many
 // frames in one scan and parse one frame at a time without copying it or keeping the others:
-// the pages are the kernel's page cache, not this process's heap.
+// the pages are the kernel's page cache, not this process's heap. As with any mapping, a file cut
+// short in place while it is read ends the process with SIGBUS. A file that grows (LAMMPS and
+// gsd append frames) or is replaced by a rename (as the writers here do) is read safely.
 #include <memory>
 #include <string>
 #include <string_view>

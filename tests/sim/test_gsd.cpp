@@ -180,6 +180,15 @@ TEST(Gsd, CorruptFilesAreRefusedInOneLine) {
   b = good;
   poke<std::uint64_t>(b, index_at, 3);  // entry 0 in frame 3, the next in frame 0
   EXPECT_NE(error_of(b).find("frame order"), std::string::npos) << error_of(b);
+  b = good;
+  for (std::uint64_t e = entries; e-- > 0;) {  // the last entry in use, in frame 1e12
+    std::int64_t loc = 0;
+    std::memcpy(&loc, good.data() + index_at + 32 * e + 16, 8);
+    if (loc == 0) continue;
+    poke<std::uint64_t>(b, index_at + 32 * e, 1000000000000ull);
+    break;
+  }
+  EXPECT_NE(error_of(b).find("names frame 1000000000000"), std::string::npos) << error_of(b);
   // particles/N larger than the positions: found, not believed.
   for (std::uint64_t e = 0; e < entries; ++e) {
     b = good;
