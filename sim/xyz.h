@@ -16,11 +16,12 @@ namespace gs {
 // Opening checks every frame's count against the lines that follow it.
 std::unique_ptr<FrameSource> open_xyz(MappedFile file);
 
-// Which reader a 2D or 1D file is for. OVITO makes a file 2D only when positions have two
-// components (pos:R:2), which ASE cannot read (its positions have three), so one file cannot be
-// both: Ase (the default) writes pos:R:3 and momenta, which ASE's get_velocities() divides by
-// the masses (1 for species X), and which OVITO shows as a layer one diameter thick in the cell;
-// Ovito writes pos:R:d and velo. 3D files are the same for both but for momenta/velo.
+// Which reader a 2D or 1D file is for. OVITO's XYZ importer makes a cell 2D only when it has a
+// cell (all three Lattice vectors non-zero) and no column maps to Position.Z, i.e. pos:R:2
+// (read in its XYZImporter.cpp, 2026), which ASE cannot read (its positions have three), so one
+// file cannot be both: Ase (the default) writes pos:R:3 and momenta, which ASE's get_velocities()
+// divides by the masses (1 for species X), and which OVITO shows as a layer one diameter thick in
+// the cell; Ovito writes pos:R:d and velo. 3D files are the same for both but for momenta/velo.
 enum class XyzFlavour { Ase, Ovito };
 
 // Writes through a temporary file and rename, numbers in shortest round-trip form: Lattice
