@@ -1,5 +1,6 @@
 #include "analysis/crossover.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -12,7 +13,8 @@ namespace {
 
 struct Marked {
   std::vector<std::size_t> index;  // samples in range with a finite slope
-  std::vector<double> deviation;   // |s - target| - tolerance |target|: <= 0 inside the band
+  std::vector<double> slope;
+  std::vector<double> above;  // s - target - tolerance |target|: > 0 above the band
 };
 
 Marked mark(std::span<const double> t, std::span<const double> y, const SlopeCrossoverOptions& o) {
@@ -24,12 +26,18 @@ Marked mark(std::span<const double> t, std::span<const double> y, const SlopeCro
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (t[i] < o.t_lo || t[i] > o.t_hi || !std::isfinite(s[i])) continue;
     m.index.push_back(i);
-    m.deviation.push_back(std::fabs(s[i] - o.target) - o.tolerance * std::fabs(o.target));
+    m.slope.push_back(s[i]);
+    m.above.push_back(s[i] - o.target - o.tolerance * std::fabs(o.target));
   }
   return m;
 }
 
-// The time between samples a and b where the deviation crosses zero, linear in ln t.
+// A slope in a note: 0.845, not 0.84532873.
+std::string three_digits(double x) {
+  return format_number(std::round(x * 1000) / 1000);
+}
+
+// The time between samples a and b where `above` crosses zero, linear in ln t.
 double interpolate(std::span<const double> t, std::size_t a, std::size_t b, double da, double db) {
   const double f = da / (da - db);
   return std::exp(std::log(t[a]) + f * (std::log(t[b]) - std::log(t[a])));
@@ -46,19 +54,21 @@ Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
     c.note = "fewer than 2 usable samples in the examined range";
     return c;
   }
-  if (m.deviation[n - 1] > 0) {
-    c.note = "the local slope is not within tolerance of " + format_double(o.target) +
-             " at the end of the range (scaling regime not reached)";
+  if (m.above[n - 1] > 0) {
+    c.note = "the local slope is above the band around " + format_double(o.target) +
+             " at the end of the range (scaling regime not reached; it ends at " +
+             three_digits(m.slope[n - 1]) + ")";
     return c;
   }
-  std::size_t k = n - 1;  // first sample of the final in-band run
-  while (k > 0 && m.deviation[k - 1] <= 0) --k;
+  std::size_t k = n - 1;  // first sample of the final run at or below the band's upper edge
+  while (k > 0 && m.above[k - 1] <= 0) --k;
   if (k == 0) {
     c.note =
-        "the local slope is within tolerance from the first sample (crossover before the data)";
+        "the local slope is at or below the band's upper edge from the first sample "
+        "(crossover before the data)";
     return c;
   }
-  c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
+  c.time = interpolate(t, m.index[k - 1], m.index[k], m.above[k - 1], m.above[k]);
   c.found = true;
   return c;
 }
@@ -72,20 +82,33 @@ Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
     c.note = "fewer than 2 usable samples in the examined range";
     return c;
   }
-  if (m.deviation[n - 1] <= 0) {
-    c.note =
-        "the local slope is still within tolerance at the end of the range (crossover not reached)";
+  if (m.above[n - 1] <= 0) {
+    c.note = "the local slope is not above the band around " + format_double(o.target) +
+             " at the end of the range (crossover not reached; it ends at " +
+             three_digits(m.slope[n - 1]) + ")";
     return c;
   }
-  std::size_t k = n - 1;  // first sample of the final out-of-band run
-  while (k > 0 && m.deviation[k - 1] > 0) --k;
+  std::size_t k = n - 1;  // first sample of the final run above the band
+  while (k > 0 && m.above[k - 1] > 0) --k;
   if (k == 0) {
-    c.note = "the local slope is never within tolerance of " + format_double(o.target);
+    c.note = "the local slope is above the band around " + format_double(o.target) +
+             " throughout (the scaling regime never began)";
     return c;
   }
-  c.time = interpolate(t, m.index[k - 1], m.index[k], m.deviation[k - 1], m.deviation[k]);
+  // Interpolated to where s crosses the band's upper edge.
+  c.time = interpolate(t, m.index[k - 1], m.index[k], m.above[k - 1], m.above[k]);
   c.found = true;
   return c;
+}
+
+CrossoverPair crossover_pair(std::span<const double> t, std::span<const double> y,
+                             const SlopeCrossoverOptions& o) {
+  CrossoverPair p;
+  p.leave = crossover_leave(t, y, o);
+  SlopeCrossoverOptions before = o;
+  if (p.leave.found) before.t_hi = std::min(o.t_hi, p.leave.time);
+  p.enter = crossover_enter(t, y, before);
+  return p;
 }
 
 CrossoverDraws crossover_draws(std::span<const double> t,
@@ -102,16 +125,9 @@ CrossoverDraws crossover_draws(std::span<const double> t,
     std::vector<double> mean(t.size(), 0.0);
     for (std::size_t k : draw)
       for (std::size_t i = 0; i < t.size(); ++i) mean[i] += curves[k][i] / double(draw.size());
-    const Crossover c1 = crossover_enter(t, mean, o);
-    out.enter.push_back(c1.found ? c1.time : nan);
-    double c2 = nan;
-    if (c1.found) {
-      SlopeCrossoverOptions late = o;
-      late.t_lo = c1.time;
-      const Crossover x = crossover_leave(t, mean, late);
-      if (x.found) c2 = x.time;
-    }
-    out.leave.push_back(c2);
+    const CrossoverPair c = crossover_pair(t, mean, o);
+    out.enter.push_back(c.enter.found ? c.enter.time : nan);
+    out.leave.push_back(c.leave.found ? c.leave.time : nan);
   }
   return out;
 }

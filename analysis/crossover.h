@@ -5,9 +5,17 @@
 //
 // Definition used (slope rule): with s(t) the local log-slope of N_t (power_law.h) and the target
 // its asymptotic value alpha d,
-//   t_c1 = the time from which s stays within `tolerance` (relative) of the target up to the end
-//          of the examined range;
-//   t_c2 = the time after which s stays out of that band up to the end of the examined range.
+//   t_c1 = the time from which s stays at or below the upper edge of the band target +-
+//          `tolerance` (relative) up to the end of the examined range: the early, elastic-like
+//          growth (s above the band) is over. An undershoot below the band that follows (2D at
+//          r >= 0.7 and 3D: s dips to ~0.57 against 2/3 and recovers over a decade) does not move
+//          it; counted as outside, it made t_c1 the end of the undershoot for some r and the entry
+//          for others;
+//   t_c2 = the time after which s stays above that band (towards the elastic regime, whose
+//          exponents are the larger) up to the end of the examined range.
+// A run may reach past t_c2 (the delta scan does), so t_c2 is sought first and t_c1 only before
+// it (crossover_pair): searched to the end of such a run, the slope is out of the band there and
+// no t_c1 would be found.
 // Each is located between the two samples where the rule switches, by linear interpolation of
 // s in ln t. If N_t = t_c^a g(t / t_c) for a family of runs (one crossover shape, shifted), the
 // slope rule gives a fixed multiple of t_c, so exponents such as phi1 come out right whatever the
@@ -27,7 +35,7 @@ struct SlopeCrossoverOptions {
   double target = std::numeric_limits<double>::quiet_NaN();  // e.g. alpha d for N_t
   double tolerance = 0.1;  // relative: |s - target| <= tolerance |target| is "in the regime"
   double half_width_decades = 0.1;  // smoothing of the local slope
-  double t_lo = 0;  // examined range; for t_c1 end it before t_c2 where the data reach it
+  double t_lo = 0;                  // examined range
   double t_hi = std::numeric_limits<double>::infinity();
 };
 
@@ -42,9 +50,17 @@ Crossover crossover_enter(std::span<const double> t, std::span<const double> y,
 Crossover crossover_leave(std::span<const double> t, std::span<const double> y,
                           const SlopeCrossoverOptions& options);  // t_c2
 
-// t_c1 and t_c2 (the latter searched after the former) of the mean of realisations drawn with
-// replacement, `resamples` times (gs::Rng, Stream::Bootstrap, keyed by seed and key): NaN where a
-// draw finds none. For bootstrap intervals of phi1 and phi2.
+// t_c2 over the examined range, then t_c1 over the part of it before t_c2 (all of it when the
+// slope does not leave the band).
+struct CrossoverPair {
+  Crossover enter, leave;  // t_c1, t_c2
+};
+CrossoverPair crossover_pair(std::span<const double> t, std::span<const double> y,
+                             const SlopeCrossoverOptions& options);
+
+// crossover_pair of the mean of realisations drawn with replacement, `resamples` times (gs::Rng,
+// Stream::Bootstrap, keyed by seed and key): NaN where a draw finds none. For bootstrap
+// intervals of phi1 and phi2.
 struct CrossoverDraws {
   std::vector<double> enter, leave;
 };

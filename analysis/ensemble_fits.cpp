@@ -197,14 +197,9 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
   co.target = a * d;
   co.t_lo = t_start;
   const auto& n = ts.column("active");
-  f.tc1 = crossover_enter(t, n, co);
-  if (f.tc1.found) {
-    SlopeCrossoverOptions late = co;
-    late.t_lo = f.tc1.time;
-    f.tc2 = crossover_leave(t, n, late);
-  } else {
-    f.tc2.note = "t_c1 not found";
-  }
+  const CrossoverPair tc = crossover_pair(t, n, co);
+  f.tc1 = tc.enter;
+  f.tc2 = tc.leave;
   // The same rules on resampled ensembles (realisations drawn with replacement).
   {
     const CrossoverDraws draws =

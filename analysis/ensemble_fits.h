@@ -9,9 +9,10 @@
 //    realisations (M >= 2), or "no plateau within the run" and no fit;
 //  - v_t is not fitted: v_rms^2 = 2 E_t / N_t holds exactly (every moving particle is active), so
 //    its exponent repeats those of E_t and N_t; the identity is checked instead;
-//  - t_c1: the time from which the local slope of <N_t> stays within 10% of alpha d
-//    (analysis/crossover.h, slope rule); t_c2: the later time from which it leaves that band
-//    for good, if the data reach it; each with bootstrap draws for the intervals of phi1, phi2;
+//  - t_c1: the time from which the local slope of <N_t> stays at or below the upper edge of a
+//    10% band around alpha d (up to t_c2; analysis/crossover.h, slope rule); t_c2: the time from
+//    which it stays above that band, if the data reach it; each with bootstrap draws for the
+//    intervals of phi1, phi2;
 //  - collapse quality Q (analysis/collapse.h) of t^alpha P(R,t) against R t^-alpha and of
 //    t^(alpha-1) P(v,t) against v t^(1-alpha) over the snapshot times;
 //  - A(t) at the last sample and the band measures at the last snapshot time.

@@ -214,8 +214,9 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
   j << "  \"crossover_definition\": "
     << json_string(
-           "slope rule on <N_t>: t_c1 = time from which the local slope stays within 10% of "
-           "alpha d; t_c2 = later time from which it stays outside that band")
+           "slope rule on <N_t>: t_c2 = time from which the local slope stays above a 10% "
+           "band around alpha d (towards the elastic regime); t_c1 = time from which it stays "
+           "at or below that band's upper edge, up to t_c2 where the run reaches it")
     << ",\n";
   j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
   j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";

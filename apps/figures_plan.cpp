@@ -9,37 +9,54 @@ namespace {
 
 struct Size {
   std::int64_t particles;
-  double t_max[7];  // per r in kRestitutions
-  std::uint64_t realisations;
-  std::uint64_t realisations_elastic;
+  double t_max[7];                     // per r in kRestitutions
+  std::uint64_t realisations;          // the paper's r < 1
+  std::uint64_t realisations_extra;    // r added for phi1: only t_c1 and exponents are read
+  std::uint64_t realisations_elastic;  // r = 1
 };
 
 // The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7 and 0.9 added so that phi1 rests on six
 // values of r (issue 21).
 constexpr double kRestitutions[7] = {0.1, 0.3, 0.5, 0.7, 0.8, 0.9, 1.0};
-// r added to the paper's: fewer realisations in --quick, where only t_c1 is read from them.
 bool extra(double r) {
   return r == 0.3 || r == 0.7 || r == 0.9;
 }
 
 // The largest r run farthest (t_c1 grows as r -> 1) and r = 1 fastest (R ~ t^(2/(d+2))); the
-// times keep the outermost active particle below ~0.8 L/2, measured on single runs (2D: r = 0.8
-// at 1e5 reaches 176 of L/2 = 316 with 1e5 discs; 3D: 2e5 spheres reach 42 of 46 at t = 3e4 for
-// r = 0.1, hence 5e5 spheres in --quick).
+// times keep the front (where the active density falls to half the ambient) below ~0.7 L/2 and
+// the outermost active particle below ~0.8 L/2, measured (2D: r = 0.8 at 1e5 reaches 176 of
+// L/2 = 316 with 1e5 discs; 3D, --quick with 5e5 spheres, L/2 = 63: the front at 0.52-0.60 L/2
+// for r <= 0.8 and at 0.71 L/2 for r = 0.9 at t = 8000, R_front ~ t^0.27-0.29). The report lists
+// R_front / (L/2) at t_max for every case.
+//
+// --quick (< 3 min on 2 cores; CPU time per realisation ~0.7-4.6 s in 2D and 1.4-3.8 s in 3D, the
+// larger r costing more) keeps every figure and report section, at half the --full times in 2D
+// (r = 0.9: a quarter, its t_c1 being ~1e3) and a sixth to a quarter in 3D, with fewer
+// realisations: 20 (2D) or 12 (3D) for the paper's r < 1 (Figs. 3-5 and the plateau fits, with
+// bootstrap intervals ~2x wider than --full's), 12 or 8 for the added r, 12 or 8 for r = 1. It
+// resolves t_c1 for every r < 1 in 2D and, in 3D, for the r whose early growth has ended before
+// the front nears the box (the report names the others and says the box is the limit).
+//
+// --full has the paper's sizes (2.5e5 discs, 2e6 spheres) but not its ~100 realisations per
+// case, which would take ~2 h on 2 cores (measured: 7295 s estimated for 100 everywhere): 48 /
+// 32 / 32 realisations in 2D (paper r, added r, r = 1) and 20 / 12 / 16 in 3D, where one
+// realisation costs 5-13 CPU-s against 1.4-9 in 2D. Its 3D times for r >= 0.7 are shorter than
+// the other r's because their fronts are faster: at 2e6 spheres (L/2 = 79) the front of r = 0.9
+// reaches 0.7 L/2 near t = 2e4 (it would wrap by 5e4).
 Size size_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:
-      return d == 2 ? Size{3000, {1500, 1500, 1500, 1500, 1500, 1500, 150}, 3, 3}
-                    : Size{5000, {1000, 1000, 1000, 600, 600, 600, 80}, 3, 3};
+      return d == 2 ? Size{3000, {1500, 1500, 1500, 1500, 1500, 1500, 150}, 3, 3, 3}
+                    : Size{5000, {1000, 1000, 1000, 600, 600, 600, 80}, 3, 3, 3};
     case FiguresMode::Quick:
-      return d == 2 ? Size{100000, {100000, 100000, 100000, 100000, 100000, 100000, 12000}, 50, 24}
-                    : Size{500000, {30000, 25000, 20000, 10000, 8000, 8000, 1200}, 24, 12};
+      return d == 2
+                 ? Size{100000, {100000, 100000, 100000, 100000, 100000, 50000, 12000}, 20, 12, 12}
+                 : Size{500000, {30000, 25000, 20000, 10000, 8000, 6000, 1200}, 12, 8, 8};
     case FiguresMode::Full:
     default:
-      // The paper's sizes (2.5e5 discs, 2e6 spheres) and 100 realisations.
       return d == 2
-                 ? Size{250000, {200000, 200000, 200000, 200000, 200000, 200000, 30000}, 100, 100}
-                 : Size{2000000, {120000, 110000, 100000, 60000, 50000, 50000, 6000}, 100, 100};
+                 ? Size{250000, {200000, 200000, 200000, 200000, 200000, 200000, 30000}, 48, 32, 32}
+                 : Size{2000000, {120000, 110000, 100000, 50000, 35000, 20000, 6000}, 20, 12, 16};
   }
 }
 
@@ -55,11 +72,40 @@ Elastic3D elastic3d_of(FiguresMode m) {
   switch (m) {
     case FiguresMode::Tiny:
       return {8000, 120, 2};
-    case FiguresMode::Quick:
-      return {1500000, 5000, 4};
+    case FiguresMode::Quick:  // to the end of the dip: the plateau rule says whether it is reached
+      return {1500000, 5000, 3};
     case FiguresMode::Full:
-    default:
-      return {4000000, 20000, 8};
+    default:  // ~70 CPU-s per realisation
+      return {4000000, 20000, 6};
+  }
+}
+
+// The delta scan (2D, r = 0.1). t_c2 ~ delta^(-1/(1-alpha)) (the paper's phi2 = 3/2 in 2D): with
+// the paper's delta = 1e-4 it lies near t ~ 2e5-3e5, beyond the longest run, so larger cutoffs
+// bring it into reach. Measured on 8 realisations of 2e5 discs: v_t ~ 0.66 t^(-2/3) and the
+// local slope of N_t leaves the band around 2/3 for good at t ~ 7e3, 1e4, 1.5e4, 2.4e4 for delta
+// = 1.4e-3, 1e-3, 7e-4, 5e-4, reaching 0.95 by 1.8e5 (--quick, 12 realisations of 1e5 discs:
+// t_c2 = 4.5e3, 7.8e3, 1.1e4, 2.2e4, phi2 ~ 1.55).
+// Larger cutoffs are useless: from delta ~ 2e-3 on, t_c2 comes before the band is reached at
+// t_c1 ~ 1e3 and no crossover is defined. Each run lasts >= 3.5 t_c2 of its smallest cutoff, so the
+// slope is well above the band at its end; past t_c2 the front spreads as r = 1 does (R ~
+// t^(1/2)) and was at 184 of L/2 = 447 at t = 1.8e5 (2e5 discs, delta = 1.4e-3): 1e5 discs
+// (L/2 = 316) hold it to 1e5 (0.44 L/2 measured), 2.5e5 (L/2 = 500) to 2.5e5.
+struct DeltaScan {
+  std::int64_t particles;
+  double t_max;
+  std::uint64_t realisations;
+  std::vector<double> cutoffs;
+};
+DeltaScan delta_scan_of(FiguresMode m) {
+  switch (m) {
+    case FiguresMode::Tiny:  // every file; no t_c2 in 300 time units
+      return {3000, 300, 2, {1e-2, 5e-3, 2.5e-3, 1e-3}};
+    case FiguresMode::Quick:
+      return {100000, 80000, 12, {1.4e-3, 1e-3, 7e-4, 5e-4}};
+    case FiguresMode::Full:
+    default:  // five cutoffs, the smallest's t_c2 ~ 6e4
+      return {250000, 250000, 16, {1e-3, 7e-4, 5e-4, 3.5e-4, 2.5e-4}};
   }
 }
 
@@ -98,13 +144,17 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed) {
       e.physics.particles = s.particles;
       e.physics.restitution = r;
       e.physics.t_max = s.t_max[k];
-      e.realisations = r < 1 ? s.realisations : s.realisations_elastic;
-      if (mode == FiguresMode::Quick && extra(r)) e.realisations /= 2;
+      e.realisations = r >= 1     ? s.realisations_elastic
+                       : extra(r) ? s.realisations_extra
+                                  : s.realisations;
       // The paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and 1 : 5/3 : 2.5 (3D).
       const double T = e.physics.t_max;
       e.snapshot_times = d == 2 ? std::vector<double>{T / 2, 0.75 * T, T}
                                 : std::vector<double>{0.4 * T, T * 2 / 3, T};
-      add("d" + std::to_string(d) + "_r" + format_number(r), e, CaseRole::Paper);
+      // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+      std::string name = "d";
+      name.append(std::to_string(d)).append("_r").append(format_number(r));
+      add(name, e, CaseRole::Paper);
     }
   }
   {
@@ -117,22 +167,17 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed) {
     e.realisations = s.realisations;
     add("d3_r1_large", e, CaseRole::Elastic3D);
   }
-  // t_c2 ~ delta^(-1/(1-alpha)) (the paper's phi2 = 3/2 in 2D): with the paper's delta = 1e-4 it
-  // lies near t ~ 1e6, beyond every run here, so larger cutoffs bring it into reach (v_t ~ 0.66
-  // t^(-2/3) in 2D at r = 0.1, measured: v_t ~ delta at t ~ 5e2 .. 2e4 for these). Four cutoffs
-  // a factor ~2 apart; the run stops at twice the elastic case's time, where the front is still
-  // inside the box (past t_c2 it spreads as r = 1 does, R ~ t^(1/2)).
   {
-    const Size s = size_of(mode, 2);
-    for (double delta : {1e-2, 5e-3, 2.5e-3, 1e-3}) {
+    const DeltaScan s = delta_scan_of(mode);
+    for (double delta : s.cutoffs) {
       EnsembleSpec e;
       e.physics.dim = 2;
       e.physics.particles = s.particles;
       e.physics.restitution = 0.1;
       e.physics.cutoff = delta;
-      e.physics.t_max = s.t_max[6] * 2;
-      e.realisations = std::max<std::uint64_t>(2, s.realisations_elastic / 2);
-      add("d2_r0.1_delta" + format_number(delta), e, CaseRole::DeltaScan);
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
+      add(std::string("d2_r0.1_delta").append(format_number(delta)), e, CaseRole::DeltaScan);
     }
   }
   const double T = size_of(mode, 2).t_max[0];

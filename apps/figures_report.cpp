@@ -9,19 +9,37 @@
 namespace gs::app {
 namespace {
 
-// Which crossovers were found, and why the others were not.
-std::string crossover_notes(const Crossovers& x) {
+std::string crossover_cell(const Crossover& c) {
+  return c.found ? figure_number(c.time, 3) : "-";
+}
+
+// The front radius at the last sample over half the box side.
+double front_reach(const CaseResult& c) {
+  const Table ts = c.sums.timeseries();
+  return ts.column("front_radius").back() / (0.5 * c.plan->spec.physics.box());
+}
+
+// Which crossovers were found, and why the others were not: a crossover beyond a run whose front
+// is already near the box is out of reach of that box, not merely of the run's length.
+std::string crossover_notes(const std::vector<CaseResult>& results) {
   std::ostringstream notes;
-  for (const auto& [d, points] : x.tc1)
-    for (const auto& p : points)
-      if (!p.crossover.found)
-        notes << "- t_c1 not found for d = " << d << ", " << p.label << ": " << p.crossover.note
-              << "\n";
-  for (const auto& p : x.tc2.front().second)
-    notes << "- t_c2(" << p.label << ") "
-          << (p.crossover.found ? "= " + figure_number(p.crossover.time)
-                                : "not found: " + p.crossover.note)
-          << " (2D, r = 0.1)\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    const bool scan = c.plan->role == CaseRole::DeltaScan;
+    if (!(c.plan->role == CaseRole::Paper && p.restitution < 1) && !scan) continue;
+    const Crossover& tc = scan ? c.fits.tc2 : c.fits.tc1;
+    if (tc.found && !scan) continue;
+    notes << "- " << (scan ? "t_c2" : "t_c1") << " of " << c.plan->name << " (d = " << p.dim
+          << ", r = " << format_number(p.restitution)
+          << (scan ? ", delta = " + format_number(p.cutoff) : std::string())
+          << "): " << (tc.found ? "= " + figure_number(tc.time) : "not found: " + tc.note);
+    const double reach = front_reach(c);
+    if (!tc.found && reach > 0.6)
+      notes << ". The front is at " << figure_number(reach, 2)
+            << " of L/2 at t_max = " << figure_number(p.t_max)
+            << ": a longer run needs a larger box (more particles)";
+    notes << ".\n";
+  }
   return notes.str();
 }
 
@@ -57,7 +75,7 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
 }
 
 void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,
-                          const std::vector<CaseResult>& results, const Crossovers& x,
+                          const std::vector<CaseResult>& results,
                           const std::vector<Comparison>& cmp,
                           const std::vector<std::string>& problems) {
   std::ostringstream md;
@@ -66,21 +84,27 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << " --threads " << run.threads << " --seed " << run.seed << "` in "
      << figure_number(run.wall, 4) << " s wall (" << figure_number(run.simulation_wall, 4)
      << " s of simulation).\n\n## Runs\n\n"
-     << "| case | d | r | N | t_max (sim) | t_max (paper) | realisations | wall (s) "
-        "|\n|---|---|---|---|---|---|---|---|\n";
+     << "| case | d | r | delta | N | t_max (sim) | t_max (paper) | realisations | wall (s) | "
+        "t_c1 | t_c2 | R_front / (L/2) at t_max |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "---|\n";
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
     md << "| " << c.plan->name << " | " << p.dim << " | " << format_number(p.restitution) << " | "
-       << p.particles << " | " << figure_number(p.t_max) << " | "
-       << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
-       << figure_number(c.wall, 3) << " |\n";
+       << format_number(p.cutoff) << " | " << p.particles << " | " << figure_number(p.t_max)
+       << " | " << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
+       << figure_number(c.wall, 3) << " | " << crossover_cell(c.fits.tc1) << " | "
+       << crossover_cell(c.fits.tc2) << " | " << figure_number(front_reach(c), 2) << " |\n";
   }
+  md << "\nt_c1, t_c2: the slope rule's crossovers of the ensemble mean (see Definitions; \"-\": "
+        "not within the run, the Notes say why). R_front / (L/2): how far the front (half the "
+        "ambient density) has come towards the nearest periodic image of the kicked site; the "
+        "plan keeps it below ~0.8 so that the front does not wrap.\n";
   md << "\nEach case's averaged time series, distributions and fits are in `ensembles/<case>/` "
         "(see its summary.json for the windows and intervals); each exponent's row links the "
         "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
      << comparisons_markdown(cmp) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
-     << crossover_notes(x);
+     << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";
   md << "\n## Files\n\n"
         "- fig1a_overlay_r0.1.png: active particles of one 2D r = 0.1 realisation at four times "

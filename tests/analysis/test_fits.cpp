@@ -178,6 +178,62 @@ TEST(Crossover, RecoversTc2AgainstCutoff) {
   EXPECT_FALSE(crossover_enter(t, y, {.target = 1.0}).found);
 }
 
+TEST(Crossover, PairFindsBothWhenTheRunReachesPastTc2) {
+  // A delta-scan run: elastic-like t^1 early, the inelastic t^(2/3) after t_c1 = 5, and t^1
+  // again after the cutoff's t_c2 ~ delta^-3/2 (all inside the run). Searched to the end, the
+  // slope is out of the band there, so t_c1 alone is not found; the pair seeks t_c2 first.
+  const double phi2 = 1.5, a = 2.0 / 3.0, tc1 = 5;
+  const auto t = log_grid(1e-3, 1e10, 40);
+  std::vector<double> control, tc2;
+  for (double delta : {5e-4, 2.5e-4, 1.25e-4, 6.25e-5}) {
+    const double tc = std::pow(delta, -phi2);
+    std::vector<double> y;
+    for (double ti : t)
+      y.push_back(crossover_curve(ti, tc1, 1.0, a) * std::pow(1 + ti / tc, 1.0 - a));
+    const SlopeCrossoverOptions o{.target = a, .tolerance = 0.1};
+    EXPECT_FALSE(crossover_enter(t, y, o).found);
+    const CrossoverPair p = crossover_pair(t, y, o);
+    ASSERT_TRUE(p.enter.found) << p.enter.note;
+    ASSERT_TRUE(p.leave.found) << p.leave.note;
+    // The crossovers are >= 1e3 apart (t_c2 / t_c1 = 2.2e4 / 20 at delta = 5e-4), where the
+    // other one's term in the slope is <= (1/3) 20 / 9e4 = 7e-5: at the slope's rate there
+    // (0.053 per e-fold) that moves each time by 0.14%, so the single-crossover values 4 tc1
+    // and tc / 4 hold to 1% as in RecoversTc1AndPhi1.
+    EXPECT_NEAR(p.enter.time / tc1, 4.0, 0.04);
+    EXPECT_NEAR(p.leave.time / tc, 0.25, 0.0025);
+    control.push_back(delta);
+    tc2.push_back(p.leave.time);
+  }
+  EXPECT_NEAR(fit_crossover_exponent(control, tc2).phi, phi2, 2e-3);  // as for phi1
+}
+
+TEST(Crossover, BelowTheBandIsNeitherTc2NorALaterTc1) {
+  // The slope falls from the early t^1 through the band around 2/3 at t_c1 = 4 tc1 and on below
+  // it (the undershoot of 2D at r >= 0.7 and of 3D, here never recovering): a departure below
+  // the band is not the crossover to the elastic regime, and t_c1 stays where the early growth
+  // ended.
+  const double a = 2.0 / 3.0, tc1 = 5;
+  const auto t = log_grid(1e-3, 1e8, 40);
+  std::vector<double> y;
+  for (double ti : t) y.push_back(crossover_curve(ti, tc1, 1.0, a) * std::pow(1 + ti / 1e5, -a));
+  const SlopeCrossoverOptions o{.target = a, .tolerance = 0.1};
+  const CrossoverPair p = crossover_pair(t, y, o);
+  EXPECT_FALSE(p.leave.found);
+  EXPECT_NE(p.leave.note.find("not above the band"), std::string::npos) << p.leave.note;
+  ASSERT_TRUE(p.enter.found) << p.enter.note;
+  // At t = 20 the late factor's term in the slope is a 20 / 1e5 = 1.3e-4, a 0.25% shift at the
+  // slope's rate there (0.053 per e-fold); tolerance 1% as in RecoversTc1AndPhi1.
+  EXPECT_NEAR(p.enter.time / tc1, 4.0, 0.04);
+  // Nor does the recovery from below count as an entry: the undershoot undone after 1e6 (the
+  // slope back at 2/3) leaves t_c1 where it was, to the 1.3e-5 the recovery adds to the slope
+  // at t = 20.
+  for (std::size_t i = 0; i < t.size(); ++i) y[i] *= std::pow(1 + t[i] / 1e6, a);
+  const CrossoverPair q = crossover_pair(t, y, o);
+  ASSERT_TRUE(q.enter.found) << q.enter.note;
+  EXPECT_NEAR(q.enter.time / p.enter.time, 1.0, 1e-3);
+  EXPECT_FALSE(q.leave.found);
+}
+
 // P(R,t) = t^-alpha f(R t^-alpha) tabulated as a histogram at time t.
 Histogram radial_at(double time, double alpha, int bins) {
   const double s = std::pow(time, alpha);
