@@ -28,6 +28,16 @@ struct Slot {
   std::uint32_t index = 0;  // component, or the extra column
 };
 
+// What a frame's Properties say: a slot per token of a particle line, and which fields exist.
+struct Layout {
+  std::vector<Slot> slots;
+  std::vector<std::string> extra;  // names of the extra columns, in slot order
+  int pos_count = 0;
+  bool has_vel = false, has_mom = false, has_mass = false, has_radius = false, has_active = false,
+       has_first = false;
+  bool velocity() const { return has_vel || has_mom; }
+};
+
 struct Header {
   std::string properties = "species:S:1:pos:R:3";
   bool lattice = false;
@@ -50,6 +60,10 @@ class XyzSource final : public FrameSource {
     throw_at_line(file_.path(), line, what);
   }
   Header parse_comment(std::string_view s, std::size_t line) const;
+  Layout parse_properties(const std::string& properties, std::size_t line,
+                          std::size_t max_tokens) const;
+  // The box and origin of a rectangular Lattice; true if its third vector is zero.
+  bool apply_lattice(const Header& h, SnapshotInfo& info, std::size_t line) const;
   double real(std::string_view tok, std::size_t line, std::string_view name) const {
     return finite_at(file_.path(), line, tok, name);
   }
@@ -201,6 +215,108 @@ bool logical(std::string_view t, bool& v) {
   return false;
 }
 
+Layout XyzSource::parse_properties(const std::string& properties, std::size_t line,
+                                   std::size_t max_tokens) const {
+  // name:type:count triples, each token of a line mapped to a slot.
+  std::vector<std::string_view> parts;
+  const std::string_view text = properties;
+  for (std::size_t a = 0;;) {
+    const std::size_t e = text.find(':', a);
+    parts.push_back(text.substr(a, e == std::string_view::npos ? e : e - a));
+    if (e == std::string_view::npos) break;
+    a = e + 1;
+  }
+  if (parts.size() % 3 != 0)
+    fail(line, "Properties='" + properties.substr(0, 200) + "' is not a list of name:type:count");
+  Layout l;
+  for (std::size_t p = 0; p < parts.size(); p += 3) {
+    const std::string name(parts[p]);
+    const std::string_view type = parts[p + 1];
+    std::uint32_t count = 0;
+    if (type.size() != 1 || std::string_view("SRIL").find(type[0]) == std::string_view::npos)
+      fail(line, "property '" + name + "' has unknown type '" + std::string(type) +
+                     "' (use S, R, I or L)");
+    if (!parse_integer(parts[p + 2], count) || count < 1 || count > max_tokens ||
+        l.slots.size() + count > max_tokens)
+      fail(line, "property '" + name + "' has count '" + std::string(parts[p + 2]) +
+                     "', more columns than the frame's lines can hold");
+    const char t = type[0];
+    auto add = [&](Slot::Kind kind) {
+      for (std::uint32_t c = 0; c < count; ++c) l.slots.push_back({kind, t, c});
+    };
+    auto need = [&](bool ok, const char* what) {
+      if (!ok) fail(line, "property '" + name + "' must be " + what);
+    };
+    if (iequals(name, "pos") || iequals(name, "positions")) {
+      need(t == 'R' && count <= 3 && l.pos_count == 0, "R:1, R:2 or R:3 and given once");
+      l.pos_count = static_cast<int>(count);
+      add(Slot::Pos);
+    } else if (!l.has_vel &&
+               (iequals(name, "velo") || iequals(name, "vel") || iequals(name, "velocities"))) {
+      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
+      l.has_vel = true;
+      add(Slot::Vel);
+    } else if (!l.has_mom && iequals(name, "momenta")) {
+      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
+      l.has_mom = true;
+      add(Slot::Momentum);
+    } else if (!l.has_mass && (iequals(name, "masses") || iequals(name, "mass"))) {
+      need(t == 'R' && count == 1, "R:1");
+      l.has_mass = true;
+      add(Slot::Mass);
+    } else if (!l.has_radius && (iequals(name, "radius") || iequals(name, "radii"))) {
+      need(t == 'R' && count == 1, "R:1");
+      l.has_radius = true;
+      add(Slot::Radius);
+    } else if (!l.has_active && iequals(name, "active")) {
+      need((t == 'I' || t == 'L') && count == 1, "I:1 or L:1");
+      l.has_active = true;
+      add(Slot::Active);
+    } else if (!l.has_first && iequals(name, "first_collision")) {
+      need(t == 'R' && count == 1, "R:1");
+      l.has_first = true;
+      add(Slot::First);
+    } else if (t == 'S') {
+      add(Slot::Skip);  // species names, labels
+    } else {
+      for (std::uint32_t c = 0; c < count; ++c) {
+        l.slots.push_back({Slot::Extra, t, static_cast<std::uint32_t>(l.extra.size())});
+        l.extra.push_back(component_name(name, static_cast<int>(c), static_cast<int>(count)));
+      }
+    }
+  }
+  if (l.pos_count == 0) fail(line, "Properties has no pos column");
+  if (l.has_vel && l.has_mom)  // velo wins; momenta is then an extra column
+    for (auto& sl : l.slots)
+      if (sl.kind == Slot::Momentum) sl.kind = Slot::Skip;
+  return l;
+}
+
+bool XyzSource::apply_lattice(const Header& h, SnapshotInfo& info, std::size_t line) const {
+  // Rectangular, its vectors in any order along the axes.
+  bool zero_third = true;
+  bool axis_used[3] = {};
+  for (int v = 0; v < 3; ++v) {
+    const double* a = h.cell + 3 * v;
+    int nonzero = 0, axis = -1;
+    for (int c = 0; c < 3; ++c)
+      if (a[c] != 0) ++nonzero, axis = c;
+    if (nonzero > 1)
+      fail(line,
+           "the Lattice is triclinic (a cell vector has more than one non-zero component); "
+           "only rectangular boxes are supported");
+    if (nonzero == 0) continue;
+    if (axis_used[axis]) fail(line, "the Lattice has two cell vectors along one axis");
+    axis_used[axis] = true;
+    if (v == 2) zero_third = false;
+    info.box[axis] = std::abs(a[axis]);
+    info.origin[axis] = h.origin[axis] + std::min(a[axis], 0.0);
+  }
+  for (int c = 0; c < 3; ++c)
+    if (!axis_used[c]) info.origin[c] = h.origin[c];
+  return zero_third;
+}
+
 Snapshot XyzSource::read(std::size_t k) const {
   const FrameSpan& f = frames_[k];
   const std::string_view b = file_.bytes();
@@ -212,116 +328,14 @@ Snapshot XyzSource::read(std::size_t k) const {
   Snapshot s;
   s.info = h.info;
 
-  // The Properties: name:type:count triples, each token of a line mapped to a slot.
-  std::vector<Slot> slots;
-  std::vector<std::string_view> parts;
-  {
-    const std::string_view p = h.properties;
-    std::size_t a = 0;
-    while (true) {
-      const std::size_t e = p.find(':', a);
-      parts.push_back(p.substr(a, e == std::string_view::npos ? e : e - a));
-      if (e == std::string_view::npos) break;
-      a = e + 1;
-    }
-  }
-  if (parts.size() % 3 != 0)
-    fail(comment_line,
-         "Properties='" + h.properties.substr(0, 200) + "' is not a list of name:type:count");
   // A line has at most one token per 2 bytes, so a count beyond that cannot be right.
   const std::size_t max_tokens = std::min<std::size_t>(f.end - f.body + 1, std::size_t{1} << 24);
-  int pos_count = 0;
-  bool has_vel = false, has_mom = false, has_mass = false, has_radius = false, has_active = false,
-       has_first = false;
-  for (std::size_t p = 0; p < parts.size(); p += 3) {
-    const std::string name(parts[p]);
-    const std::string_view type = parts[p + 1];
-    std::uint32_t count = 0;
-    if (type.size() != 1 || std::string_view("SRIL").find(type[0]) == std::string_view::npos)
-      fail(comment_line, "property '" + name + "' has unknown type '" + std::string(type) +
-                             "' (use S, R, I or L)");
-    if (!parse_integer(parts[p + 2], count) || count < 1 || count > max_tokens ||
-        slots.size() + count > max_tokens)
-      fail(comment_line, "property '" + name + "' has count '" + std::string(parts[p + 2]) +
-                             "', more columns than the frame's lines can hold");
-    const char t = type[0];
-    auto add = [&](Slot::Kind kind) {
-      for (std::uint32_t c = 0; c < count; ++c) slots.push_back({kind, t, c});
-    };
-    auto need = [&](bool ok, const char* what) {
-      if (!ok) fail(comment_line, "property '" + name + "' must be " + what);
-    };
-    if (iequals(name, "pos") || iequals(name, "positions")) {
-      need(t == 'R' && count <= 3 && pos_count == 0, "R:1, R:2 or R:3 and given once");
-      pos_count = static_cast<int>(count);
-      add(Slot::Pos);
-    } else if (!has_vel &&
-               (iequals(name, "velo") || iequals(name, "vel") || iequals(name, "velocities"))) {
-      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
-      has_vel = true;
-      add(Slot::Vel);
-    } else if (!has_mom && iequals(name, "momenta")) {
-      need(t == 'R' && count <= 3, "R:1, R:2 or R:3");
-      has_mom = true;
-      add(Slot::Momentum);
-    } else if (!has_mass && (iequals(name, "masses") || iequals(name, "mass"))) {
-      need(t == 'R' && count == 1, "R:1");
-      has_mass = true;
-      add(Slot::Mass);
-    } else if (!has_radius && (iequals(name, "radius") || iequals(name, "radii"))) {
-      need(t == 'R' && count == 1, "R:1");
-      has_radius = true;
-      add(Slot::Radius);
-    } else if (!has_active && iequals(name, "active")) {
-      need((t == 'I' || t == 'L') && count == 1, "I:1 or L:1");
-      has_active = true;
-      add(Slot::Active);
-    } else if (!has_first && iequals(name, "first_collision")) {
-      need(t == 'R' && count == 1, "R:1");
-      has_first = true;
-      add(Slot::First);
-    } else if (t == 'S') {
-      add(Slot::Skip);  // species names, labels
-    } else {
-      for (std::uint32_t c = 0; c < count; ++c) {
-        slots.push_back({Slot::Extra, t, static_cast<std::uint32_t>(s.columns.size())});
-        s.columns.push_back(
-            {component_name(name, static_cast<int>(c), static_cast<int>(count)), {}});
-      }
-    }
-  }
-  if (pos_count == 0) fail(comment_line, "Properties has no pos column");
-  const bool velocity = has_vel || has_mom;
-  if (has_vel && has_mom)  // velo wins; momenta is then an extra column
-    for (auto& sl : slots)
-      if (sl.kind == Slot::Momentum) sl.kind = Slot::Skip;
-
-  // The cell: rectangular, its vectors in any order along the axes.
-  bool zero_third = true;
-  if (h.lattice) {
-    bool axis_used[3] = {};
-    for (int v = 0; v < 3; ++v) {
-      const double* a = h.cell + 3 * v;
-      int nonzero = 0, axis = -1;
-      for (int c = 0; c < 3; ++c)
-        if (a[c] != 0) ++nonzero, axis = c;
-      if (nonzero > 1)
-        fail(comment_line,
-             "the Lattice is triclinic (a cell vector has more than one non-zero component); "
-             "only rectangular boxes are supported");
-      if (nonzero == 0) continue;
-      if (axis_used[axis]) fail(comment_line, "the Lattice has two cell vectors along one axis");
-      axis_used[axis] = true;
-      if (v == 2) zero_third = false;
-      s.info.box[axis] = std::abs(a[axis]);
-      s.info.origin[axis] = h.origin[axis] + std::min(a[axis], 0.0);
-    }
-    for (int c = 0; c < 3; ++c)
-      if (!axis_used[c]) s.info.origin[c] = h.origin[c];
-  }
+  const Layout l = parse_properties(h.properties, comment_line, max_tokens);
+  for (const std::string& name : l.extra) s.columns.push_back({name, {}});
+  const bool zero_third = h.lattice ? apply_lattice(h, s.info, comment_line) : true;
   // The dimension as the file states it (0: not stated).
   int stated = h.dim;
-  if (stated == 0 && pos_count < 3) stated = pos_count;
+  if (stated == 0 && l.pos_count < 3) stated = l.pos_count;
   if (stated == 0 && h.lattice && h.pbc_given && h.pbc[0] && h.pbc[1] && !h.pbc[2] && zero_third)
     stated = 2;
   s.info.dim = stated;
@@ -329,24 +343,24 @@ Snapshot XyzSource::read(std::size_t k) const {
   // Allocation is bounded by the bytes of the frame: every token takes at least two, so more
   // tokens than bytes is a lie told before anything is allocated (short lines are found below).
   const std::uint64_t n = f.n;
-  const std::size_t ntok = slots.size();
+  const std::size_t ntok = l.slots.size();
   if (n > 0 && ntok > (f.end - f.body + 1) / n)
     fail(comment_line, "Properties declares " + std::to_string(ntok) + " columns, more than the " +
                            std::to_string(n) + " lines of the frame hold");
   s.position.assign(n, Eigen::Vector3d::Zero());
-  if (velocity) s.velocity.assign(n, Eigen::Vector3d::Zero());
-  if (has_radius) s.radius.resize(n);
-  if (has_active) s.active.resize(n);
-  if (has_first) s.first_collision.resize(n);
+  if (l.velocity()) s.velocity.assign(n, Eigen::Vector3d::Zero());
+  if (l.has_radius) s.radius.resize(n);
+  if (l.has_active) s.active.resize(n);
+  if (l.has_first) s.first_collision.resize(n);
   std::vector<double> mass;
-  if (has_mom && !has_vel && has_mass) mass.resize(n);
+  if (l.has_mom && !l.has_vel && l.has_mass) mass.resize(n);
   for (auto& c : s.columns) c.values.resize(n);
   const int check_from = stated > 0 && stated < 3 ? stated : 3;
 
   scan_rows(
       b.substr(f.body, f.end - f.body), n, ntok, f.count_line + 2, file_.path(),
       [&](std::size_t i, std::size_t t, std::string_view tok, std::size_t line_no) {
-        const Slot& sl = slots[t];
+        const Slot& sl = l.slots[t];
         switch (sl.kind) {
           case Slot::Skip:
             break;
@@ -401,7 +415,7 @@ Snapshot XyzSource::read(std::size_t k) const {
       },
       [&](std::size_t i, std::size_t line_no) {
         for (int c = check_from; c < 3; ++c)
-          if (s.position[i][c] != 0 || (velocity && s.velocity[i][c] != 0))
+          if (s.position[i][c] != 0 || (l.velocity() && s.velocity[i][c] != 0))
             fail(line_no,
                  "the file is " + std::to_string(stated) + "D but a component beyond it is not 0");
       },
