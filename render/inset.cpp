@@ -2,17 +2,16 @@
 
 #include <algorithm>
 
+#include "sim/error.h"
 #include "sim/observables.h"
 
 namespace gs::render {
 
-InsetData inset_profile(const Snapshot& s, double v_rms, int bins) {
+InsetData inset_profile(const Snapshot& band, double v_rms, int bins) {
   InsetData d;
-  if (std::find(s.active.begin(), s.active.end(), 1) == s.active.end() || !s.has_velocity())
-    return d;
-  // The profile reads the active particles several times: from their copy, a few per cent of
-  // a big snapshot, the big arrays are read once (sim/observables.h).
-  const RadialProfile p = radial_profile(active_subset(s), Binning{.bins = bins});
+  GS_CHECK(std::find(band.active.begin(), band.active.end(), 0) == band.active.end());
+  if (band.size() == 0 || !band.has_velocity()) return d;
+  const RadialProfile p = radial_profile(band, Binning{.bins = bins});
   d.scaled = v_rms > 0;
   const double k = d.scaled ? 1 / v_rms : 1;
   for (std::size_t b = 0; b + 1 < p.edges.size(); ++b) {

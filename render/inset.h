@@ -1,7 +1,8 @@
 #pragma once
 // The inset profile across the band: number density of the active particles and their mean
 // (scaled) speed against distance from their centre of mass, from sim/observables' radial
-// profile. Computed from the whole snapshot, so a 3D slab picture shows the whole shell's profile.
+// profile. Computed from every active particle, so a 3D slab picture shows the whole shell's
+// profile.
 #include <vector>
 
 #include "sim/snapshot.h"
@@ -16,7 +17,9 @@ struct InsetData {
   bool scaled = false;          // speed is over v_rms
 };
 
-// Empty (no shells) when no particle is active. v_rms > 0 scales the speeds.
-InsetData inset_profile(const Snapshot& s, double v_rms, int bins = 40);
+// `band`: the active particles alone (sim/observables' active_subset, or the copy build_scene
+// makes as it draws them), with velocities. Empty (no shells) when it holds none. v_rms > 0
+// scales the speeds.
+InsetData inset_profile(const Snapshot& band, double v_rms, int bins = 40);
 
 }  // namespace gs::render

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "render/field.h"
 
@@ -50,16 +51,32 @@ void fill_rect(Image& img, int x0, int y0, int x1, int y1, Rgb8 colour, float al
   x0 = std::max(x0, 0), y0 = std::max(y0, 0);
   x1 = std::min(x1, img.width), y1 = std::min(y1, img.height);
   if (x0 >= x1 || y0 >= y1) return;
+  if (alpha >= 1) {  // most calls: the inset's lines and dots, ticks, a bar's rows
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) std::copy_n(colour.data(), 3, img.pixel(x, y));
+    return;
+  }
   // The blend of a channel depends on its old value alone: a table of 3 x 256 makes a panel
   // (the inset's is a sixth of a 1080p frame) three look-ups a pixel.
   std::array<std::array<std::uint8_t, 256>, 3> blend;
   for (int k = 0; k < 3; ++k)
     for (int v = 0; v < 256; ++v)
       blend[k][v] = static_cast<std::uint8_t>(v + alpha * (colour[k] - v) + 0.5f);
+  // A pixel already of the panel's colour keeps it (the blend of c over c is c). Panels are
+  // painted on the background colour, and pictures keep their particles clear of them, so most
+  // runs of opaque pixels of that colour are skipped, told by one memcmp.
+  constexpr int kRun = 32;
+  std::array<std::uint8_t, 4 * kRun> same;
+  for (int i = 0; i < kRun; ++i)
+    std::copy_n(std::array<std::uint8_t, 4>{colour[0], colour[1], colour[2], 255}.data(), 4,
+                same.data() + 4 * i);
   for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
+    for (int x = x0; x < x1; x += kRun) {
+      const int n = std::min(kRun, x1 - x);
       std::uint8_t* p = img.pixel(x, y);
-      for (int k = 0; k < 3; ++k) p[k] = blend[k][p[k]];
+      if (std::memcmp(p, same.data(), 4 * static_cast<std::size_t>(n)) == 0) continue;
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) p[4 * i + k] = blend[k][p[4 * i + k]];
     }
 }
 
@@ -252,12 +269,17 @@ Rect OverlayPainter::inset(Image& img, const InsetData& d, const Colormap& cmap,
   const Rgb8 grey = {static_cast<std::uint8_t>((c.text[0] + c.panel[0]) / 2),
                      static_cast<std::uint8_t>((c.text[1] + c.panel[1]) / 2),
                      static_cast<std::uint8_t>((c.text[2] + c.panel[2]) / 2)};
-  // Density: one grey column per shell.
+  // Density: one grey column per shell, opaque in the colour the grey at 70% gives over the
+  // panel (where the panel lies on the background, as a fitted picture keeps it: the pixels the
+  // blend gave, written instead of blended).
+  Rgb8 column;
+  for (int k = 0; k < 3; ++k)
+    column[k] = static_cast<std::uint8_t>(c.panel[k] + 0.7f * (grey[k] - c.panel[k]) + 0.5f);
   const double half_bin = d.r.size() > 1 ? 0.5 * (d.r[1] - d.r[0]) : d.r_max / 2;
   for (std::size_t b = 0; b < d.r.size(); ++b)
     fill_rect(img, static_cast<int>(std::lround(X(d.r[b] - half_bin))),
               static_cast<int>(std::lround(Yn(d.density[b]))),
-              static_cast<int>(std::lround(X(d.r[b] + half_bin))), plot.y1, grey, 0.7f);
+              static_cast<int>(std::lround(X(d.r[b] + half_bin))), plot.y1, column);
   // Mean speed: a thin line through dots in the colour the particles of that speed have.
   const int dot = std::max(3, small / 3);
   double px = NAN, py = NAN;

@@ -13,7 +13,7 @@ double Histogram::integral() const {
   return sum;
 }
 
-Histogram make_histogram(std::span<const double> samples, const Binning& binning) {
+std::vector<double> histogram_edges(std::span<const double> samples, const Binning& binning) {
   if (binning.bins < 1) throw UserError("histogram bins must be at least 1");
   double lo = binning.lo, hi = binning.hi;
   if (!(hi > lo)) {
@@ -22,11 +22,18 @@ Histogram make_histogram(std::span<const double> samples, const Binning& binning
     for (double x : samples) hi = std::max(hi, x);
     if (!(hi > lo)) hi = lo + 1;  // all samples at 0 (or none): any positive range holds them
   }
-  Histogram h;
   const auto n = static_cast<std::size_t>(binning.bins);
-  h.edges.resize(n + 1);
-  for (std::size_t i = 0; i <= n; ++i) h.edges[i] = lo + (hi - lo) * double(i) / double(n);
-  h.edges[n] = hi;  // exact upper edge, so "x == hi goes in the last bin" holds bit for bit
+  std::vector<double> edges(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) edges[i] = lo + (hi - lo) * double(i) / double(n);
+  edges[n] = hi;  // exact upper edge, so "x == hi goes in the last bin" holds bit for bit
+  return edges;
+}
+
+Histogram make_histogram(std::span<const double> samples, const Binning& binning) {
+  Histogram h;
+  h.edges = histogram_edges(samples, binning);
+  const std::size_t n = h.edges.size() - 1;
+  const double lo = h.edges.front(), hi = h.edges.back();
   std::vector<std::uint64_t> count(n, 0);
   for (double x : samples) {
     ++h.samples;
@@ -34,12 +41,7 @@ Histogram make_histogram(std::span<const double> samples, const Binning& binning
       ++h.outside;
       continue;
     }
-    auto i = static_cast<std::size_t>((x - lo) / (hi - lo) * double(n));
-    i = std::min(i, n - 1);
-    // The division can land one bin off near an edge; the edges are the truth.
-    while (i > 0 && x < h.edges[i]) --i;
-    while (i + 1 < n && x >= h.edges[i + 1]) ++i;
-    ++count[i];
+    ++count[bin_of(h.edges, x)];
   }
   h.values.assign(n, 0.0);
   if (h.samples == 0) return h;

@@ -128,9 +128,13 @@ Snapshot active_subset(const Snapshot& s) {
 
 std::vector<double> active_distances(const Snapshot& s, const Eigen::Vector3d& centre) {
   const int d = checked_dim(s);
+  const Eigen::Vector3d c = project(centre, d);
   std::vector<double> r;
+  // Sized first: growing it copied the distances over and over (a movie's inset, every frame).
+  r.reserve(s.active.empty() ? s.size()
+                             : s.size() - std::count(s.active.begin(), s.active.end(), 0));
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) r.push_back((project(s.position[i], d) - project(centre, d)).norm());
+    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
   return r;
 }
 
@@ -250,29 +254,41 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
 RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   const int d = checked_dim(s);
   require_velocities(s);
-  const Shape sh = measure_shape(s);
-  const auto r = active_distances(s, sh.centre);
-  // The histogram fixes the shells exactly as P(R,t) does.
-  const Histogram h = make_histogram(r, binning);
-  const std::size_t n = h.bins();
+  // The centre and its velocity alone (measure_shape adds the gyration tensor and its
+  // eigenvalues): a movie's inset takes this profile in every frame.
+  std::size_t active = 0;
+  const Eigen::Vector3d centre = centre_of_active(s, d, &active);
+  Eigen::Vector3d centre_velocity = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (is_active(s, i)) centre_velocity += project(s.velocity[i], d);
+  if (active > 0) centre_velocity /= double(active);
+  const auto r = active_distances(s, centre);
+  // The shells are P(R,t)'s histogram bins exactly.
   RadialProfile p;
-  p.edges = h.edges;
-  p.count.assign(n, 0);
+  p.edges = histogram_edges(r, binning);
+  const std::size_t n = p.edges.size() - 1;
+  std::vector<std::uint64_t> count(n, 0);
   std::vector<double> speed(n, 0.0), radial(n, 0.0);
-  const double lo = h.edges.front(), hi = h.edges.back();
+  const double lo = p.edges.front(), hi = p.edges.back();
+  // Locals, not the snapshot's members, in the loop: the sums' stores would otherwise make the
+  // compiler load them again for every particle.
+  const Eigen::Vector3d* x_of = s.position.data();
+  const Eigen::Vector3d* v_of = s.velocity.data();
+  const std::uint8_t* active_of = s.active.empty() ? nullptr : s.active.data();
+  const std::size_t size = s.size();
   std::size_t j = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!is_active(s, i)) continue;
+  for (std::size_t i = 0; i < size; ++i) {
+    if (active_of && !active_of[i]) continue;
     const double ri = r[j++];
     if (!(ri >= lo && ri <= hi)) continue;
-    std::size_t b = std::upper_bound(h.edges.begin(), h.edges.end(), ri) - h.edges.begin();
-    b = std::min(b == 0 ? 0 : b - 1, n - 1);
-    const Eigen::Vector3d v = project(s.velocity[i], d);
-    const Eigen::Vector3d x = project(s.position[i], d) - sh.centre;
-    ++p.count[b];
+    const std::size_t b = bin_of(p.edges, ri);
+    const Eigen::Vector3d v = project(v_of[i], d);
+    const Eigen::Vector3d x = project(x_of[i], d) - centre;
+    ++count[b];
     speed[b] += v.norm();
-    if (ri > 0) radial[b] += (v - sh.centre_velocity).dot(x) / ri;
+    if (ri > 0) radial[b] += (v - centre_velocity).dot(x) / ri;
   }
+  p.count = std::move(count);
   p.density.resize(n);
   p.mean_speed.resize(n);
   p.mean_radial_velocity.resize(n);
@@ -280,7 +296,7 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   p.speed_sum = speed;
   p.radial_velocity_sum = radial;
   for (std::size_t b = 0; b < n; ++b) {
-    const double shell = ball_volume(d, h.edges[b + 1]) - ball_volume(d, h.edges[b]);
+    const double shell = ball_volume(d, p.edges[b + 1]) - ball_volume(d, p.edges[b]);
     p.density[b] = double(p.count[b]) / shell;
     p.mean_speed[b] = p.count[b] ? speed[b] / double(p.count[b]) : nan;
     p.mean_radial_velocity[b] = p.count[b] ? radial[b] / double(p.count[b]) : nan;

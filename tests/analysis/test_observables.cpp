@@ -169,6 +169,32 @@ TEST(Observables, ActiveSubsetKeepsTheActiveParticlesAndTheirMeasures) {
             radial_distribution(s, {.bins = 40}).values);
   EXPECT_EQ(speed_distribution(a, {.bins = 40}).values, speed_distribution(s, {.bins = 40}).values);
   EXPECT_EQ(measure_shape(a).gyration, measure_shape(s).gyration);
+  const RadialProfile pa = radial_profile(a, {.bins = 40}), ps = radial_profile(s, {.bins = 40});
+  EXPECT_EQ(pa.edges, ps.edges);
+  EXPECT_EQ(pa.count, ps.count);
+  EXPECT_EQ(pa.speed_sum, ps.speed_sum);
+  EXPECT_EQ(pa.radial_velocity_sum, ps.radial_velocity_sum);
+}
+
+// radial_profile bins by the histogram's own rule: its shells are P(R,t)'s bins, sample for
+// sample, with the upper edge inside the last bin and samples on an inner edge in the bin above.
+TEST(Observables, RadialProfileShellsAreTheHistogramBins) {
+  for (int dim : {2, 3}) {
+    const Snapshot s = random_gas(dim, 3000, 5 + dim);
+    for (const Binning b : {Binning{.bins = 40}, Binning{.bins = 7, .lo = 2, .hi = 9}}) {
+      const Histogram h = radial_distribution(s, b);
+      const RadialProfile p = radial_profile(s, b);
+      ASSERT_EQ(p.edges, h.edges);
+      for (std::size_t k = 0; k < h.bins(); ++k)
+        EXPECT_EQ(double(p.count[k]), std::round(h.values[k] * double(h.samples) * h.width(k)));
+    }
+  }
+  const std::vector<double> edges = histogram_edges(std::vector<double>{0.3, 4.0}, {.bins = 4});
+  ASSERT_EQ(edges, (std::vector<double>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(bin_of(edges, 0.0), 0u);
+  EXPECT_EQ(bin_of(edges, 1.0), 1u);
+  EXPECT_EQ(bin_of(edges, std::nextafter(3.0, 0.0)), 2u);
+  EXPECT_EQ(bin_of(edges, 4.0), 3u);  // the upper edge: the last bin
 }
 
 TEST(Observables, BandPackingOfSquareLattice) {

@@ -10,6 +10,7 @@
 #include "render/overlay.h"
 #include "render/scene.h"
 #include "sim/error.h"
+#include "sim/observables.h"
 
 namespace gs::render {
 namespace {
@@ -141,6 +142,61 @@ TEST(Scene, InsetProfileHoldsTheBandAndItsScaledSpeeds) {
   }
   EXPECT_NEAR(first, 2 / rms, 0.1 / rms);
   EXPECT_NEAR(last, 1 / rms, 0.1 / rms);
+}
+
+// The scene takes the inset's profile from the active particles it copies as it draws them:
+// the same numbers as the profile of the snapshot's active subset, and in a 3D slab those of
+// the whole shell, culled particles included.
+TEST(Scene, InsetProfileIsThatOfEveryActiveParticle) {
+  for (int dim : {2, 3}) {
+    Snapshot s = ring(2, 1);
+    s.info.dim = dim;
+    s.info.set_cubic_box(100);
+    if (dim == 3)
+      for (std::size_t i = 0; i < s.size(); ++i) s.position[i].z() = 50 + (i % 7) * 4.0 - 12;
+    Style st;
+    st.field = Field::ScaledSpeed;
+    st.inset = true;
+    View v = view();
+    if (dim == 3) v.slab = 2;
+    const Scene sc = build_scene({&s}, st, v, painter());
+    ASSERT_TRUE(sc.inset);
+    const InsetData want = inset_profile(active_subset(s), sc.v_rms);
+    EXPECT_EQ(sc.inset->r, want.r);
+    EXPECT_EQ(sc.inset->density, want.density);
+    for (std::size_t b = 0; b < want.speed.size(); ++b) {
+      if (std::isfinite(want.speed[b])) {
+        EXPECT_EQ(sc.inset->speed[b], want.speed[b]) << b;
+      }
+    }
+    if (dim == 3) {
+      EXPECT_LT(sc.sprites.size(), s.size() - 1);  // the slab culls most of the ring
+    }
+  }
+}
+
+// A translucent panel blends every pixel but leaves those already of its colour as they are,
+// which lets fill_rect skip runs of them.
+TEST(Scene, TranslucentPanelBlendsEveryPixelNotOfItsColour) {
+  Image img(70, 3);
+  const Rgb8 panel = {250, 250, 250};
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      std::uint8_t* p = img.pixel(x, y);
+      const bool mark = (x == 5 && y == 1) || x == 69;
+      p[0] = mark ? 10 : panel[0], p[1] = mark ? 20 : panel[1], p[2] = mark ? 30 : panel[2];
+      p[3] = 255;
+    }
+  fill_rect(img, 0, 0, img.width, img.height, panel, 0.5f);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const bool mark = (x == 5 && y == 1) || x == 69;
+      const std::uint8_t* p = img.pixel(x, y);
+      EXPECT_EQ(p[0], mark ? 130 : 250) << x << "," << y;  // 10 + 0.5 (250 - 10), rounded
+      EXPECT_EQ(p[1], mark ? 135 : 250) << x << "," << y;
+      EXPECT_EQ(p[2], mark ? 140 : 250) << x << "," << y;
+      EXPECT_EQ(p[3], 255);
+    }
 }
 
 TEST(Scene, MissingDataAndUnknownFieldsNameTheFile) {
