@@ -120,7 +120,7 @@ void add_movie_command(CLI::App& app) {
         if (sub->get_option(std::string(name))->count() > 0)
           throw UserError(std::string(name) +
                           " sets up a simulation; a movie of stored snapshots takes none");
-      // Every file is read (and checked) before the folder is made.
+      // Every file is opened and the first frame read (and checked) before the folder is made.
       StoredMovie m = prepare_stored_movie(opt->files, opt->movie);
       std::error_code ec;
       const bool existed = std::filesystem::exists(opt->out, ec);

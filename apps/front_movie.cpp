@@ -1,9 +1,9 @@
-// A colour must mean one value throughout and a following camera must never lose the front, so
-// both need every frame ahead of time. Runs are reproducible from (config, seed), so a first,
-// picture-less pass over the same trajectory finds the colour range and the camera path; the
-// second pass renders. The first pass is skipped when neither is needed (a fixed range and a
-// fixed camera). Stored snapshots take the same two passes over the files (the first also puts
-// them in order of time and checks them), and the same frame loop.
+// One frame loop for every movie. A colour must mean one value throughout: when the range is
+// not fixed ahead (plain speed without --range), a first, picture-less pass finds it (runs are
+// reproducible from (config, seed), so it replays the same trajectory). The following camera is
+// aimed from each frame and those before it (render/follow_camera.h), so it needs no pass ahead.
+// Stored snapshots are drawn in the order given, each read once, while they prove to be in order
+// of time; if they are not, the movie starts again after a pass that orders them.
 #include "apps/front_movie.h"
 
 #include <algorithm>
@@ -16,10 +16,12 @@
 #include <numbers>
 #include <optional>
 #include <thread>
+#include <tuple>
 
 #include "apps/progress.h"
 #include "render/camera.h"
 #include "render/field.h"
+#include "render/follow_camera.h"
 #include "render/png.h"
 #include "render/renderer.h"
 #include "sim/engine.h"
@@ -135,53 +137,9 @@ std::pair<double, double> fixed_range(const std::vector<FrameScan>& frames, rend
   return {lo, hi};
 }
 
-// A following camera: centres are a moving average of the front's centre; the visible size is
-// the running maximum of what each frame needs, averaged over the frames ahead. The running
-// maximum never shrinks and the average ahead is never below it, so the front always fits and
-// the zoom only ever eases outward.
-struct Shot {
-  Eigen::Vector3d centre;
-  double half = 1;  // 2D: half the visible width; 3D: radius of the sphere to frame
-};
-
-std::vector<Shot> camera_path(const std::vector<FrameScan>& frames, int dim, double aspect,
-                              double margin, int window) {
-  const int n = static_cast<int>(frames.size());
-  std::vector<Eigen::Vector3d> raw(n);
-  for (int k = 0; k < n; ++k) raw[k] = frames[k].front.center();
-  std::vector<Shot> shots(n);
-  for (int k = 0; k < n; ++k) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    const int a = std::max(0, k - window), b = std::min(n - 1, k + window);
-    for (int j = a; j <= b; ++j) c += raw[j];
-    shots[k].centre = c / (b - a + 1);
-  }
-  // At least 12 diameters across the shorter side, so the first collisions are not a blur.
-  const double min_half = dim == 3 ? 6 : 6 * std::max(1.0, aspect);
-  std::vector<double> need(n);
-  for (int k = 0; k < n; ++k) {
-    const auto& box = frames[k].front;
-    const Eigen::Vector3d c = shots[k].centre;
-    const Eigen::Vector3d reach =
-        (box.max() - c).cwiseMax(c - box.min()) + Eigen::Vector3d::Constant(0.5);
-    const double pad = 1 + margin;
-    const double sphere = frames[k].radius + (box.center() - c).norm() + 0.5;
-    double h = dim == 3 ? sphere * pad : std::max(reach.x() * pad, reach.y() * pad * aspect);
-    need[k] = std::max(h, min_half);
-  }
-  for (int k = 1; k < n; ++k) need[k] = std::max(need[k], need[k - 1]);
-  for (int k = 0; k < n; ++k) {
-    const int b = std::min(n - 1, k + window);
-    double sum = 0;
-    for (int j = k; j <= b; ++j) sum += need[j];
-    shots[k].half = sum / (b - k + 1);
-  }
-  return shots;
-}
-
 // Points the renderer's view at a shot. 2D: the zoom that turns the renderer's fitted framing of
 // this frame into the shot's width; 3D: an explicit camera distance.
-void aim(render::View& view, const Shot& shot, const Snapshot& s, const FrameScan& f) {
+void aim(render::View& view, const render::Shot& shot, const Snapshot& s, const FrameScan& f) {
   view.centre = shot.centre;
   if (s.info.dim == 3) {
     const double tan_y = std::tan(view.fov * std::numbers::pi / 360);
@@ -288,20 +246,32 @@ class LiveFrames final : public Frames {
   Snapshot snap_;  // reused frame after frame
 };
 
-// Every frame of stored snapshot files in a chosen order. A second thread reads frame k + 1 while
-// frame k is drawn; it waits for the slot to empty first, so at most two frames are in memory
-// at once. The first pass walks the files in the order given, every frame of each, and learns
-// the frames; later passes visit them in the order reorder() set, keeping the last file opened
-// (its frame index) for the frames after it.
+// Every frame of stored snapshot files in a chosen order. list() opens the files (which indexes
+// their frames without parsing them) and takes the frames in the order given; reorder() changes
+// it. A second thread reads frame k + 1 while frame k is drawn; it waits for the slot to empty
+// first, so at most two frames are in memory at once. The last file opened stays open for the
+// frames after it.
 class StoredFrames final : public Frames {
  public:
   explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {}
   std::size_t size() const override { return entries_.size(); }
+  // UserError naming a file that cannot be opened or holds no frame.
+  void list() {
+    for (std::size_t file = 0; file < paths_.size(); ++file) {
+      const std::size_t n = open_snapshots(paths_[file]).frame_count();
+      if (n == 0) throw UserError("snapshot '" + paths_[file] + "' holds no frame");
+      counts_.push_back(n);
+      for (std::size_t j = 0; j < n; ++j) entries_.push_back({file, j});
+    }
+  }
   // "'file'", or "frame 3 of 'file'" for a file of several frames (frames count from 0).
   std::string name(std::size_t k) const {
     const Entry& e = entries_[k];
     const std::string file = "'" + paths_[e.file] + "'";
     return counts_[e.file] == 1 ? file : "frame " + std::to_string(e.frame) + " of " + file;
+  }
+  Snapshot read_frame(std::size_t k) const {
+    return read(open_snapshots(paths_[entries_[k].file]), entries_[k].frame);
   }
   // Reorders the frames: frame k becomes the one that was frame `order[k]`.
   void reorder(const std::vector<std::size_t>& order) {
@@ -311,11 +281,8 @@ class StoredFrames final : public Frames {
   }
   bool each(Progress& progress, const char* pass,
             const std::function<void(std::size_t, const Snapshot&)>& visit) override {
-    const bool first = counts_.empty();
     struct Item {
-      Entry entry;
-      std::size_t count;  // frames in its file
-      double done;        // fraction of the pass once this frame is drawn
+      bool end = false;  // the item ending the pass
       Snapshot snap;
     };
     std::mutex m;
@@ -332,36 +299,24 @@ class StoredFrames final : public Frames {
       cv.notify_all();
       return true;
     };
-    // A file's frames, counted by the first pass: a file that changed since reads as an error.
-    std::vector<std::size_t> counted = counts_;
+    // A file's frames as list() counted them: a file that changed since reads as an error.
     auto open = [&](std::size_t file) {
       SnapshotFile f = open_snapshots(paths_[file]);
-      if (!first && f.frame_count() != counted[file])
+      if (f.frame_count() != counts_[file])
         throw UserError(
             "snapshot '" + paths_[file] + "' changed while the movie was made: it had " +
-            std::to_string(counted[file]) + " frames, it has " + std::to_string(f.frame_count()));
+            std::to_string(counts_[file]) + " frames, it has " + std::to_string(f.frame_count()));
       return f;
     };
     std::thread reader([&] {
       try {
-        if (first) {
-          for (std::size_t file = 0; file < paths_.size(); ++file) {
-            const SnapshotFile f = open(file);
-            const std::size_t n = f.frame_count();
-            if (n == 0) throw UserError("snapshot '" + paths_[file] + "' holds no frame");
-            for (std::size_t j = 0; j < n; ++j)
-              if (!put({{file, j}, n, (file + (j + 1.0) / n) / paths_.size(), read(f, j)})) return;
-          }
-        } else {
-          std::optional<SnapshotFile> f;
-          std::size_t open_file = 0;
-          for (std::size_t k = 0; k < entries_.size(); ++k) {
-            const Entry e = entries_[k];
-            if (!f || open_file != e.file) f.reset(), f.emplace(open(e.file)), open_file = e.file;
-            if (!put({e, counted[e.file], (k + 1.0) / entries_.size(), read(*f, e.frame)})) return;
-          }
+        std::optional<SnapshotFile> f;
+        std::size_t open_file = 0;
+        for (const Entry& e : entries_) {
+          if (!f || open_file != e.file) f.reset(), f.emplace(open(e.file)), open_file = e.file;
+          if (!put({false, read(*f, e.frame)})) return;
         }
-        put({{0, kEnd}, 0, 1, {}});
+        put({true, {}});
       } catch (...) {
         std::lock_guard lock(m);
         error = std::current_exception();
@@ -392,20 +347,12 @@ class StoredFrames final : public Frames {
         slot.reset();
       }
       cv.notify_all();
-      if (item.entry.frame == kEnd) return true;
-      if (first) {
-        entries_.push_back(item.entry);
-        if (item.entry.file == counts_.size()) counts_.push_back(item.count);
-      }
+      if (item.end) return true;
       visit(k, item.snap);
       char what[160];
-      if (first)
-        std::snprintf(what, sizeof what, "%s: frame %zu, t = %.4g", pass, k + 1,
-                      item.snap.info.time);
-      else
-        std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g", pass, k + 1,
-                      entries_.size(), item.snap.info.time);
-      progress.update(item.done, what);
+      std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g", pass, k + 1,
+                    entries_.size(), item.snap.info.time);
+      progress.update((k + 1.0) / entries_.size(), what);
       if (stop_requested()) return false;
     }
   }
@@ -414,7 +361,6 @@ class StoredFrames final : public Frames {
   struct Entry {
     std::size_t file, frame;
   };
-  static constexpr std::size_t kEnd = std::size_t(-1);  // the frame of the item ending a pass
   // Frame j; a reader's error (which names the file and line) also names the frame.
   static Snapshot read(const SnapshotFile& f, std::size_t j) {
     try {
@@ -427,23 +373,21 @@ class StoredFrames final : public Frames {
   }
   std::vector<std::string> paths_;
   std::vector<Entry> entries_;       // frame k of the movie is frame entries_[k].frame of a file
-  std::vector<std::size_t> counts_;  // frames in each file, as the first pass found them
+  std::vector<std::size_t> counts_;  // frames in each file
 };
 
-// The first pass: what every frame needs of all the others (range, camera path).
+// The first pass, when one is needed: the colour range that spans every frame. `check` (stored
+// snapshots) is called on every frame the movie draws, before it is drawn.
 struct Prepared {
   Plan plan;
   std::vector<FrameScan> scans;
-  std::vector<Shot> shots;
+  std::function<void(std::size_t, const Snapshot&)> check;
   bool stopped = false;
 };
 
-void finish_first_pass(Prepared& p, int dim, double fps) {
-  if (p.stopped) return;
-  if (p.plan.need_range) p.plan.style.range = fixed_range(p.scans, p.plan.style.scale);
-  if (p.plan.follow)
-    p.shots = camera_path(p.scans, dim, double(p.plan.view.width) / p.plan.view.height,
-                          p.plan.view.margin, std::max(1, static_cast<int>(fps / 2)));
+void finish_first_pass(Prepared& p) {
+  if (!p.stopped && p.plan.need_range)
+    p.plan.style.range = fixed_range(p.scans, p.plan.style.scale);
 }
 
 // The PNGs of --keep-frames in DIR/frames. Made before the movie starts, so that an unwritable
@@ -486,15 +430,22 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
   const std::size_t n = frames.size();
   double render_s = 0, png_s = 0, encode_s = 0;
   bool stopped = p.stopped;
+  std::optional<render::FollowCamera> follow;
   if (!stopped) {
     Progress progress(o.quiet);
     stopped = !frames.each(progress, pass, [&](std::size_t k, const Snapshot& snap) {
       auto t0 = std::chrono::steady_clock::now();
+      if (p.check) p.check(k, snap);
+      const bool cut = snap.info.dim == 3 && (view.slab > 0 || view.clip);
+      const FrameScan f = p.plan.follow || cut ? scan(snap, style, false) : FrameScan{};
       if (p.plan.follow) {
-        aim(view, p.shots[k], snap, p.scans[k]);
-      } else if (snap.info.dim == 3 && k < p.scans.size()) {
+        if (!follow)
+          follow.emplace(snap.info.dim, double(view.width) / view.height, view.margin,
+                         static_cast<int>(o.movie.fps / 2));
+        aim(view, follow->next(f.front, f.radius), snap, f);
+      } else if (cut) {
         // A fixed camera sees the wrapped box: the cut goes through the front's wrapped centre.
-        Eigen::Vector3d c = p.scans[k].front.center();
+        Eigen::Vector3d c = f.front.center();
         const Eigen::Vector3d& box = snap.info.box;
         const Eigen::Vector3d& lo = snap.info.origin;
         for (int a = 0; a < 3; ++a)
@@ -570,26 +521,88 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
   render::MovieWriter movie(dir / "movie.mp4", o.movie);
   render::Renderer renderer(p.plan.backend);
   install_stop_handlers();
-  // A 3D slab or clip seen by a fixed camera follows the front's centre, found by the first pass.
-  const bool cut = physics.dim == 3 && (o.slab > 0 || o.clip);
-  if (p.plan.need_range || p.plan.follow || cut) {
+  if (p.plan.need_range) {
     Progress progress(o.quiet);
-    p.stopped =
-        !frames.each(progress, "pass 1 of 2 (range, camera)", [&](std::size_t, const Snapshot& s) {
-          p.scans.push_back(scan(s, p.plan.style, p.plan.need_range));
-        });
+    p.stopped = !frames.each(progress, "pass 1 of 2 (range)", [&](std::size_t, const Snapshot& s) {
+      p.scans.push_back(scan(s, p.plan.style, true));
+    });
     progress.done();
-    finish_first_pass(p, physics.dim, o.movie.fps);
+    finish_first_pass(p);
   }
   return render_pass(frames, p, o, pngs, movie, renderer,
                      p.scans.empty() ? "movie" : "pass 2 of 2 (movie)");
 }
 
 struct StoredMovie::Impl {
+  Impl(const std::vector<std::string>& files, const FrontMovieOptions& o)
+      : frames(files), options(o) {}
   StoredFrames frames;
   Prepared prepared;
   FrontMovieOptions options;
+  std::string first_name;  // the first frame given, which the others must fit
+  int first_dim = 2;
+  Eigen::Vector3d first_box = Eigen::Vector3d::Zero();
+  bool ordered = false;  // the frames are known to be in order of time
 };
+
+namespace {
+
+// Thrown by the drawing pass when frames given in the order of their files turn out not to be
+// in order of time: the movie then starts again after a pass that orders them.
+struct OutOfOrder {};
+
+// UserError naming the frame unless it fits the first: dimension, box, the field's data.
+void check_stored_frame(const StoredMovie::Impl& m, std::size_t k, const Snapshot& s) {
+  const std::string name = m.frames.name(k);
+  const render::Style& style = m.prepared.plan.style;
+  if (s.info.dim != m.first_dim)
+    throw UserError(name + " is " + std::to_string(s.info.dim) + "D but " + m.first_name + " is " +
+                    std::to_string(m.first_dim) + "D: a movie's frames share one dimension");
+  if ((s.info.box - m.first_box).cwiseAbs().maxCoeff() >
+      1e-9 * std::max(1.0, m.first_box.maxCoeff())) {
+    auto edges = [&](const Eigen::Vector3d& b) {
+      std::string e = format_number(b[0]);
+      for (int a = 1; a < s.info.dim; ++a) e += " x " + format_number(b[a]);
+      return e;
+    };
+    throw UserError(name + " has box " + edges(s.info.box) + " but " + m.first_name + " has " +
+                    edges(m.first_box) + ": a movie's frames share one box");
+  }
+  if (s.size() > 0 && render::needs_velocity(style.field) && !s.has_velocity())
+    throw UserError(name + " has no velocities (no velo property); cannot colour by " +
+                    render::field_name(style.field));
+  if (style.field == render::Field::Column && !s.column(style.column))
+    throw UserError(name + " has no column '" + style.column + "' but " + m.first_name +
+                    " has: a movie's frames share one field");
+}
+
+// A pass over every frame that checks them, puts them in order of their Time, then of their
+// time step (a LAMMPS dump without ITEM: TIME has only steps; frames of equal time and step keep
+// the order they were given in), and finds the colour range if one spans them all.
+void order_frames(StoredMovie::Impl& m) {
+  Prepared& p = m.prepared;
+  Progress progress(m.options.quiet);
+  std::vector<FrameScan> scans;
+  p.stopped =
+      !m.frames.each(progress, "pass 1 of 2 (order, range)", [&](std::size_t k, const Snapshot& s) {
+        check_stored_frame(m, k, s);
+        scans.push_back(scan(s, p.plan.style, p.plan.need_range));
+      });
+  progress.done();
+  if (p.stopped) return;
+  std::vector<std::size_t> order(scans.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::pair{scans[a].time, scans[a].step} < std::pair{scans[b].time, scans[b].step};
+  });
+  m.frames.reorder(order);
+  p.scans.clear();
+  for (std::size_t k : order) p.scans.push_back(scans[k]);
+  finish_first_pass(p);
+  m.ordered = true;
+}
+
+}  // namespace
 
 StoredMovie::StoredMovie(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 StoredMovie::~StoredMovie() = default;
@@ -602,72 +615,59 @@ std::size_t StoredMovie::frames() const {
 StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
                                  const FrontMovieOptions& o) {
   if (files.empty()) throw UserError("a movie of stored snapshots needs at least one file");
-  auto impl = std::make_unique<StoredMovie::Impl>(StoredMovie::Impl{StoredFrames(files), {}, o});
-  Prepared& p = impl->prepared;
+  auto impl = std::make_unique<StoredMovie::Impl>(files, o);
+  StoredMovie::Impl& m = *impl;
+  Prepared& p = m.prepared;
   p.plan = make_plan(o);
-  StoredFrames& frames = impl->frames;
   install_stop_handlers();
-  // The first pass reads every file: their times, and what the range and the camera need. A
-  // file that cannot be read, or does not fit with the first, is named before anything is made.
-  Progress progress(o.quiet);
-  std::vector<FrameScan> scans;
-  p.stopped = !frames.each(
-      progress, "pass 1 of 2 (order, range, camera)", [&](std::size_t k, const Snapshot& s) {
-        const std::string name = frames.name(k);
-        if (k == 0) {
-          p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
-          if (p.plan.style.field == render::Field::Column) p.plan.style.column = o.colour_by;
-          p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
-          render::check_style(p.plan.style);
-          check_orbit(s.info.dim, o, name);
-          settle_range(p.plan, s.info.dim);
-        } else {
-          const FrameScan& first = scans.front();
-          if (s.info.dim != first.dim)
-            throw UserError(name + " is " + std::to_string(s.info.dim) + "D but " + frames.name(0) +
-                            " is " + std::to_string(first.dim) +
-                            "D: a movie's frames share one dimension");
-          if ((s.info.box - first.box).cwiseAbs().maxCoeff() >
-              1e-9 * std::max(1.0, first.box.maxCoeff())) {
-            auto edges = [&](const Eigen::Vector3d& b) {
-              std::string e = format_number(b[0]);
-              for (int a = 1; a < s.info.dim; ++a) e += " x " + format_number(b[a]);
-              return e;
-            };
-            throw UserError(name + " has box " + edges(s.info.box) + " but " + frames.name(0) +
-                            " has " + edges(first.box) + ": a movie's frames share one box");
-          }
-        }
-        if (s.size() > 0 && render::needs_velocity(p.plan.style.field) && !s.has_velocity())
-          throw UserError(name + " has no velocities (no velo property); cannot colour by " +
-                          render::field_name(p.plan.style.field));
-        if (p.plan.style.field == render::Field::Column && !s.column(p.plan.style.column))
-          throw UserError(name + " has no column '" + p.plan.style.column + "' but " +
-                          frames.name(0) + " has: a movie's frames share one field");
-        scans.push_back(scan(s, p.plan.style, p.plan.need_range));
-      });
-  progress.done();
-  if (p.stopped) return StoredMovie(std::move(impl));
-  // Frames in order of their Time, then of their time step (a LAMMPS dump without ITEM: TIME
-  // has only steps); frames of equal time and step keep the order they were given in.
-  std::vector<std::size_t> order(scans.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::pair{scans[a].time, scans[a].step} < std::pair{scans[b].time, scans[b].step};
-  });
-  frames.reorder(order);
-  for (std::size_t k : order) p.scans.push_back(scans[k]);
-  finish_first_pass(p, p.scans.front().dim, o.movie.fps);
+  // Every file is opened (its frames indexed) and the first frame read, so that a file that
+  // cannot be read, and flags that do not fit the frames, are named before anything is made.
+  m.frames.list();
+  const Snapshot s = m.frames.read_frame(0);
+  m.first_name = m.frames.name(0);
+  m.first_dim = s.info.dim;
+  m.first_box = s.info.box;
+  p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
+  if (p.plan.style.field == render::Field::Column) p.plan.style.column = o.colour_by;
+  p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
+  render::check_style(p.plan.style);
+  check_orbit(s.info.dim, o, m.first_name);
+  settle_range(p.plan, s.info.dim);
+  check_stored_frame(m, 0, s);
+  // A range that spans every frame needs them all first; that pass orders them too. Otherwise
+  // the frames are drawn as given, each read once, while they prove to be in order of time.
+  if (p.plan.need_range) order_frames(m);
   return StoredMovie(std::move(impl));
 }
 
 FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir) {
-  const FrontMovieOptions& o = m.impl_->options;
-  Prepared& p = m.impl_->prepared;
+  StoredMovie::Impl& impl = *m.impl_;
+  const FrontMovieOptions& o = impl.options;
+  Prepared& p = impl.prepared;
+  render::Renderer renderer(p.plan.backend);
+  if (!impl.ordered && !p.stopped) {
+    KeptFrames pngs(dir, o.keep_frames);
+    render::MovieWriter movie(dir / "movie.mp4", o.movie);
+    double time = -INFINITY;
+    std::int64_t step = 0;
+    p.check = [&](std::size_t k, const Snapshot& s) {
+      check_stored_frame(impl, k, s);
+      const std::pair at{s.info.time, s.info.step.value_or(0)};
+      if (at < std::pair{time, step}) throw OutOfOrder{};
+      std::tie(time, step) = at;
+    };
+    try {
+      return render_pass(impl.frames, p, o, pngs, movie, renderer, "movie");
+    } catch (const OutOfOrder&) {
+      movie.discard();  // and the PNGs go with `pngs`
+    }
+    order_frames(impl);
+  }
+  p.check = nullptr;  // the pass that ordered the frames checked them
   KeptFrames pngs(dir, o.keep_frames);
   render::MovieWriter movie(dir / "movie.mp4", o.movie);
-  render::Renderer renderer(p.plan.backend);
-  return render_pass(m.impl_->frames, p, o, pngs, movie, renderer, "pass 2 of 2 (movie)");
+  return render_pass(impl.frames, p, o, pngs, movie, renderer,
+                     impl.ordered ? "pass 2 of 2 (movie)" : "movie");
 }
 
 }  // namespace gs::app

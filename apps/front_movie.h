@@ -50,8 +50,8 @@ struct FrontMovieResult {
 FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
                                    const std::filesystem::path& dir);
 
-// A movie of stored snapshots, prepared by a first pass over the files (which puts them in
-// order of Time and checks them), so that bad input is refused before an output folder is made.
+// A movie of stored snapshots, prepared so that bad input (a file that cannot be opened, flags
+// that do not fit the first frame) is refused before an output folder is made.
 class StoredMovie {
  public:
   struct Impl;
@@ -65,14 +65,16 @@ class StoredMovie {
   std::unique_ptr<Impl> impl_;
 };
 
-// Reads every frame of every file once (a file of several frames gives several movie frames).
-// UserError naming the file (and the frame, in a file of several) for one that cannot be read,
-// has no velocities when coloured by a speed, lacks the --color-by field (listing those it has),
-// or differs from the first frame in dimension or box; and for --orbit on 2D frames.
+// Opens every file (a file of several frames gives several movie frames) and reads the first
+// frame: UserError naming the file for one that cannot be opened or holds no frame, and for a
+// --color-by field the first frame lacks (listing those it has) or --orbit on 2D frames. Reads
+// every frame now only when the colour range must span them all (that pass also orders them).
 StoredMovie prepare_stored_movie(const std::vector<std::string>& files, const FrontMovieOptions& o);
-// Writes dir/movie.mp4 (dir must exist), reading each frame again, one ahead on a second thread.
-// A frame that fails now (its file changed since) ends it with the error, and what it wrote
-// (the partial movie, --keep-frames PNGs and their folder) is removed again.
+// Writes dir/movie.mp4 (dir must exist), each frame read one ahead on a second thread. A frame
+// that cannot be read, has no velocities when coloured by a speed, lacks the field, or differs
+// from the first in dimension or box ends it with a UserError naming the file (and the frame, in
+// a file of several); what it wrote (the partial movie, --keep-frames PNGs and their folder) is
+// removed again.
 FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path& dir);
 
 }  // namespace gs::app

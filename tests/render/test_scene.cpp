@@ -7,6 +7,7 @@
 
 #include "render/contrast.h"
 #include "render/field.h"
+#include "render/follow_camera.h"
 #include "render/overlay.h"
 #include "render/scene.h"
 #include "sim/error.h"
@@ -197,6 +198,33 @@ TEST(Scene, TranslucentPanelBlendsEveryPixelNotOfItsColour) {
       EXPECT_EQ(p[2], mark ? 140 : 250) << x << "," << y;
       EXPECT_EQ(p[3], 255);
     }
+}
+
+// The following camera is causal: a front that grows, stalls, shrinks and drifts is always in
+// view (2D: its box within the half width and the half height the aspect gives), and the view
+// never narrows, so the zoom only ever eases outward.
+TEST(Scene, FollowCameraKeepsTheFrontInViewAndNeverZoomsIn) {
+  for (int dim : {2, 3}) {
+    const double aspect = 16.0 / 9, margin = 0.1;
+    FollowCamera cam(dim, aspect, margin, 3);
+    double last = 0;
+    for (int k = 0; k < 60; ++k) {
+      const double r = k < 30 ? 2.0 + k : k < 40 ? 32 : 32 - (k - 40) * 0.5;  // grow, stall, shrink
+      const Eigen::Vector3d c(100 + 0.7 * k, 50 - 0.3 * k, dim == 3 ? 20.0 : 0.0);
+      const Eigen::Vector3d e(r, r, dim == 3 ? r : 0.0);
+      const Eigen::AlignedBox3d front(c - e, c + e);
+      const Shot s = cam.next(front, r * std::sqrt(double(dim)));
+      EXPECT_GE(s.half, last) << k;
+      last = s.half;
+      const Eigen::Vector3d far = (front.max() - s.centre).cwiseMax(s.centre - front.min());
+      if (dim == 2) {
+        EXPECT_LE(far.x(), s.half) << k;
+        EXPECT_LE(far.y(), s.half / aspect) << k;
+      } else {
+        EXPECT_LE((c - s.centre).norm() + r * std::sqrt(3.0), s.half) << k;
+      }
+    }
+  }
 }
 
 TEST(Scene, MissingDataAndUnknownFieldsNameTheFile) {

@@ -1,0 +1,30 @@
+#include "render/follow_camera.h"
+
+#include <algorithm>
+
+namespace gs::render {
+
+FollowCamera::FollowCamera(int dim, double aspect, double margin, int window)
+    : dim_(dim), aspect_(aspect), margin_(margin), window_(std::max(1, window)) {}
+
+Shot FollowCamera::next(const Eigen::AlignedBox3d& front, double radius) {
+  centres_.push_back(front.center());
+  if (centres_.size() > window_ + 1) centres_.erase(centres_.begin());
+  Shot shot;
+  for (const auto& c : centres_) shot.centre += c;
+  shot.centre /= double(centres_.size());
+  // At least 12 diameters across the shorter side, so the first collisions are not a blur.
+  const double min_half = dim_ == 3 ? 6 : 6 * std::max(1.0, aspect_);
+  const Eigen::Vector3d c = shot.centre;
+  const Eigen::Vector3d reach =
+      (front.max() - c).cwiseMax(c - front.min()) + Eigen::Vector3d::Constant(0.5);
+  const double pad = 1 + margin_;
+  const double sphere = radius + (front.center() - c).norm() + 0.5;
+  const double need =
+      dim_ == 3 ? sphere * pad : std::max(reach.x() * pad, reach.y() * pad * aspect_);
+  half_ = std::max({half_, need, min_half});
+  shot.half = half_;
+  return shot;
+}
+
+}  // namespace gs::render
