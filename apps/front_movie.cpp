@@ -16,7 +16,6 @@
 #include <numbers>
 #include <optional>
 #include <thread>
-#include <tuple>
 
 #include "apps/progress.h"
 #include "render/camera.h"
@@ -648,13 +647,13 @@ FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path&
   if (!impl.ordered && !p.stopped) {
     KeptFrames pngs(dir, o.keep_frames);
     render::MovieWriter movie(dir / "movie.mp4", o.movie);
-    double time = -INFINITY;
-    std::int64_t step = 0;
-    p.check = [&](std::size_t k, const Snapshot& s) {
+    // (time, step) of the frame before; held by the check, which outlives this call.
+    auto before = std::make_shared<std::pair<double, std::int64_t>>(-INFINITY, 0);
+    p.check = [&impl, before](std::size_t k, const Snapshot& s) {
       check_stored_frame(impl, k, s);
-      const std::pair at{s.info.time, s.info.step.value_or(0)};
-      if (at < std::pair{time, step}) throw OutOfOrder{};
-      std::tie(time, step) = at;
+      const std::pair<double, std::int64_t> at{s.info.time, s.info.step.value_or(0)};
+      if (at < *before) throw OutOfOrder{};
+      *before = at;
     };
     try {
       return render_pass(impl.frames, p, o, pngs, movie, renderer, "movie");
