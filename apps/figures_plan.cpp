@@ -31,18 +31,22 @@ bool extra(double r) {
 //
 // --quick (< 3 min on 2 cores; CPU time per realisation ~0.7-4.6 s in 2D and 1.4-3.8 s in 3D, the
 // larger r costing more) keeps every figure and report section, at half the --full times in 2D
-// (r = 0.9: a quarter, its t_c1 being ~1e3) and a sixth to a quarter in 3D, with fewer
-// realisations: 20 (2D) or 12 (3D) for the paper's r < 1 (Figs. 3-5 and the plateau fits, with
-// bootstrap intervals ~2x wider than --full's), 12 or 8 for the added r, 12 or 8 for r = 1. It
+// (r = 0.9 also half, its t_c1 being ~1e3) and a sixth to a quarter in 3D, with fewer
+// realisations: 16 (2D) or 12 (3D) for the paper's r < 1 (Figs. 3-5 and the plateau fits, with
+// bootstrap intervals ~2x wider than --full's), 12 or 8 for the added r, 10 or 8 for r = 1. It
 // resolves t_c1 for every r < 1 in 2D and, in 3D, for the r whose early growth has ended before
 // the front nears the box (the report names the others and says the box is the limit).
+// Measured at load ~5 (other builds): 326 CPU-s in all with 20 / 12 / 12 in 2D, against 424 for
+// the plan before (20-50 realisations), which took 280 s wall on a quiet machine.
 //
 // --full has the paper's sizes (2.5e5 discs, 2e6 spheres) but not its ~100 realisations per
-// case, which would take ~2 h on 2 cores (measured: 7295 s estimated for 100 everywhere): 48 /
-// 32 / 32 realisations in 2D (paper r, added r, r = 1) and 20 / 12 / 16 in 3D, where one
-// realisation costs 5-13 CPU-s against 1.4-9 in 2D. Its 3D times for r >= 0.7 are shorter than
-// the other r's because their fronts are faster: at 2e6 spheres (L/2 = 79) the front of r = 0.9
-// reaches 0.7 L/2 near t = 2e4 (it would wrap by 5e4).
+// case, which would take ~2 h on 2 cores (measured: 7295 s estimated for 100 everywhere): 40 /
+// 32 / 24 realisations in 2D (paper r, added r, r = 1) and 20 / 12 / 16 in 3D, where one
+// realisation costs 6-11 CPU-s against 1.2-6.8 in 2D (--estimate from CPU time at load 5: 1574 s
+// for 48 / 32 / 32 and 2D r = 0.9 to 2e5; for these, at load ~3: 1002 s from CPU time, 1482 s
+// from wall time, the 4e6-sphere blast 54 CPU-s per realisation). Its 3D times for r >= 0.7 are
+// shorter than the other r's because their fronts are faster: at 2e6 spheres (L/2 = 79) the front
+// of r = 0.9 reaches 0.7 L/2 near t = 2e4 (it would wrap by 5e4).
 Size size_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:
@@ -50,12 +54,12 @@ Size size_of(FiguresMode m, int d) {
                     : Size{5000, {1000, 1000, 1000, 600, 600, 600, 80}, 3, 3, 3};
     case FiguresMode::Quick:
       return d == 2
-                 ? Size{100000, {100000, 100000, 100000, 100000, 100000, 50000, 12000}, 20, 12, 12}
+                 ? Size{100000, {100000, 100000, 100000, 100000, 100000, 50000, 12000}, 16, 12, 10}
                  : Size{500000, {30000, 25000, 20000, 10000, 8000, 6000, 1200}, 12, 8, 8};
     case FiguresMode::Full:
     default:
       return d == 2
-                 ? Size{250000, {200000, 200000, 200000, 200000, 200000, 200000, 30000}, 48, 32, 32}
+                 ? Size{250000, {200000, 200000, 200000, 200000, 200000, 100000, 30000}, 40, 32, 24}
                  : Size{2000000, {120000, 110000, 100000, 50000, 35000, 20000, 6000}, 20, 12, 16};
   }
 }
@@ -75,8 +79,8 @@ Elastic3D elastic3d_of(FiguresMode m) {
     case FiguresMode::Quick:  // to the end of the dip: the plateau rule says whether it is reached
       return {1500000, 5000, 3};
     case FiguresMode::Full:
-    default:  // ~70 CPU-s per realisation
-      return {4000000, 20000, 6};
+    default:  // 64 CPU-s per realisation (--estimate)
+      return {4000000, 20000, 5};
   }
 }
 
