@@ -299,9 +299,21 @@ int run_job(const RunOptions& o, bool resume) {
   std::unique_ptr<RunLoop> loop;
   if (resume) {
     dir = o.out;
-    if (finished_run(dir))
-      throw UserError("'" + dir.string() +
-                      "' holds a finished run (summary.json): nothing to resume");
+    if (finished_run(dir)) {
+      // summary.json is a run's last result: a kill after it, before the checkpoints were
+      // removed, leaves a finished run with checkpoints, which only need removing.
+      if (!fs::exists(RunLoop::checkpoint_path(dir)) &&
+          !fs::exists(RunLoop::previous_checkpoint_path(dir)))
+        throw UserError("'" + dir.string() +
+                        "' holds a finished run (summary.json): nothing to resume");
+      lock_output_dir(dir);
+      fs::remove(RunLoop::checkpoint_path(dir));
+      fs::remove(RunLoop::previous_checkpoint_path(dir));
+      if (!o.quiet)
+        std::fprintf(stderr, "grainshock: %s had finished; its leftover checkpoints are removed\n",
+                     dir.c_str());
+      return kExitSuccess;
+    }
     lock_output_dir(dir);
     loop = RunLoop::resume(o.plan, dir, spec);
     remove_leftovers(dir);
@@ -354,8 +366,8 @@ int run_job(const RunOptions& o, bool resume) {
   }
   loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
-  write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));
   write_file_atomic(dir / "timing.json", timing_json(loop->timing(), seconds_since(t2), sim));
+  write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",

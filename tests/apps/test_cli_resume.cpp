@@ -118,6 +118,24 @@ TEST(CliResume, StoppedBySigintAndResumed) {
   expect_same_folder(ref, cut);
 }
 
+// A kill after summary.json (the last result) but before the checkpoints are removed leaves a
+// finished run: resume removes them, changes nothing else, and succeeds (a kill at that moment
+// once made this resume fail, so that the random kills above were flaky).
+TEST(CliResume, AKillAfterTheLastResultLeavesAFinishedRun) {
+  const auto dir = scratch_dir("done");
+  ASSERT_EQ(grainshock("run --dim 2 --particles 2000 --t-max 300 --quiet --out " + dir.string())
+                .exit_code,
+            0);
+  const auto before = files_of(dir);
+  std::ofstream(dir / "checkpoint.bin") << "left by a kill";
+  std::ofstream(dir / "checkpoint.prev.bin") << "left by a kill";
+  const auto r = grainshock("resume --quiet " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(files_of(dir), before);
+  // Without checkpoints it is still refused: there is nothing to resume.
+  EXPECT_EQ(grainshock("resume --quiet " + dir.string()).exit_code, 1);
+}
+
 // Refusals: one line, exit 1, and the folder exactly as it was.
 TEST(CliResume, WhatCannotBeResumedIsRefused) {
   const std::string c = "--dim 2 --particles 2000 --quiet";
