@@ -52,7 +52,9 @@ struct Snapshot {
   std::vector<Column> columns;            // further numeric columns of the file
 
   std::size_t size() const { return position.size(); }
-  bool has_velocity() const { return !velocity.empty(); }
+  // Every particle has a velocity; so has a snapshot of none (the active particles before the
+  // first collision), whose speeds are simply an empty set.
+  bool has_velocity() const { return !velocity.empty() || position.empty(); }
   // The extra column of that name (exact match), or nullptr.
   const Column* column(std::string_view name) const {
     for (const auto& c : columns)

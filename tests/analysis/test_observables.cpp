@@ -176,6 +176,20 @@ TEST(Observables, ActiveSubsetKeepsTheActiveParticlesAndTheirMeasures) {
   EXPECT_EQ(pa.radial_velocity_sum, ps.radial_velocity_sum);
 }
 
+// Before the first collision nothing is active: the subset has no particles, and so no speeds,
+// which is not a snapshot without velocities (an ensemble sampled at t = 1 failed on it).
+TEST(Observables, NothingActiveYetGivesNoSpeedsRatherThanAnError) {
+  Snapshot s = random_gas(2, 500, 3);
+  s.active.assign(s.size(), 0);
+  const Snapshot a = active_subset(s);
+  ASSERT_EQ(a.size(), 0u);
+  EXPECT_TRUE(a.has_velocity());
+  EXPECT_TRUE(active_speeds(a).empty());
+  Snapshot no_velocities = s;
+  no_velocities.velocity.clear();
+  EXPECT_THROW(active_speeds(no_velocities), UserError);
+}
+
 // radial_profile bins by the histogram's own rule: its shells are P(R,t)'s bins, sample for
 // sample, with the upper edge inside the last bin and samples on an inner edge in the bin above.
 TEST(Observables, RadialProfileShellsAreTheHistogramBins) {
