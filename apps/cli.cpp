@@ -84,8 +84,9 @@ std::string toml_value(const std::string& text) {
 }  // namespace
 
 std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out) {
-  static const std::set<std::string> kLeftOut = {"--help", "--version", "--config",
-                                                 "--out",  "--force",   "--quiet"};
+  // What says where and how to run, not what the results are.
+  static const std::set<std::string> kLeftOut = {
+      "--help", "--version", "--config", "--out", "--force", "--quiet", "--checkpoint-every"};
   std::string out;
   for (const CLI::Option* opt : sub.get_options()) {
     const std::string name = opt->get_name();

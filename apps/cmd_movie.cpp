@@ -1,11 +1,14 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
-// DIR/movie.mp4 beside movie.toml (every setting, for --config), or, given snapshot files, draws
-// them in order of their time into DIR/movie.mp4 (see apps/front_movie.h).
+// DIR/movie.mp4 beside movie.toml (every setting, for --config), with checkpoints that
+// `grainshock resume DIR` goes on from, or, given snapshot files, draws them in order of their
+// time into DIR/movie.mp4 (see apps/front_movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <span>
+#include <sstream>
 #include <string_view>
 
 #include "apps/cli.h"
@@ -21,7 +24,9 @@ namespace {
 
 // What a movie writes into its folder; --force removes these first, so that a folder never
 // mixes two movies.
-constexpr const char* kMovieOutputs[] = {"movie.toml", "movie.mp4", "frames"};
+constexpr const char* kMovieOutputs[] = {
+    "movie.toml", "movie.mp4", "movie.parts", "movie.checkpoint.bin", "movie.checkpoint.prev.bin",
+    "frames"};
 
 // Flags that shape a simulation: they mean nothing to stored snapshots.
 constexpr std::string_view kSimulationFlags[] = {
@@ -30,96 +35,116 @@ constexpr std::string_view kSimulationFlags[] = {
     "--t-max",     "--initial",   "--temperature",   "--lattice",
     "--kick-site", "--frames",    "--frame-spacing", "--t-start"};
 
-void write_movie_toml(const std::filesystem::path& dir, const CLI::App& sub, bool stored) {
-  write_file_atomic(dir / "movie.toml",
-                    "# grainshock movie: every setting that shapes the movie.\n"
-                    "# Again: grainshock movie --config movie.toml --out NEW\n" +
-                        settings_toml(sub, stored ? std::span(kSimulationFlags)
-                                                  : std::span<const std::string_view>()));
+// Writes DIR/movie.toml and returns its text.
+std::string write_movie_toml(const std::filesystem::path& dir, const CLI::App& sub, bool stored) {
+  const std::string text =
+      "# grainshock movie: every setting that shapes the movie.\n"
+      "# Again: grainshock movie --config movie.toml --out NEW; "
+      "continue: grainshock resume DIR\n" +
+      settings_toml(sub,
+                    stored ? std::span(kSimulationFlags) : std::span<const std::string_view>());
+  write_file_atomic(dir / "movie.toml", text);
+  return text;
+}
+
+struct MovieJob {
+  PhysicsConfig physics;
+  std::string out = "grainshock-movie";
+  bool force = false;
+  FrontMovieOptions movie;
+  std::vector<std::string> files;
+  double checkpoint_every = MovieCheckpoints{}.every;
+};
+
+// Every flag of `grainshock movie` into `job`.
+void add_movie_flags(CLI::App& sub, MovieJob& job) {
+  sub.add_option("snapshots", job.files,
+                 "Snapshot files to draw instead of simulating, in order of their Time");
+  add_config_option(sub);
+  add_physics_options(sub, job.physics);
+  add_output_options(sub, job.out, job.force, job.movie.quiet);
+  add_checkpoint_option(sub, job.checkpoint_every);
+  sub.add_option("--frames", job.movie.frames, "Number of frames")->capture_default_str();
+  sub.add_option("--frame-spacing", job.movie.spacing,
+                 "Frame times: lin (t-max/N apart) or log (from --t-start to --t-max)")
+      ->capture_default_str();
+  sub.add_option("--t-start", job.movie.t_start, "Time of the first frame with --frame-spacing log")
+      ->capture_default_str();
+  sub.add_option("--codec", job.movie.movie.codec, "h264 (falls back to mpeg4), libx264 or mpeg4")
+      ->capture_default_str();
+  sub.add_option("--fps", job.movie.movie.fps, "Frames per second of the movie")
+      ->capture_default_str();
+  sub.add_option("--crf", job.movie.movie.crf,
+                 "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
+      ->capture_default_str();
+  sub.add_option("--width", job.movie.movie.width, "Frame width in pixels")->capture_default_str();
+  sub.add_option("--height", job.movie.movie.height, "Frame height in pixels")
+      ->capture_default_str();
+  sub.add_option("--camera", job.movie.camera,
+                 "follow: the front, smoothly; fixed: the whole periodic box")
+      ->capture_default_str();
+  sub.add_option("--color-by", job.movie.colour_by,
+                 "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
+                 "scaled-radial-velocity, radial-velocity, first-collision, none (one colour), "
+                 "or (stored snapshots) a numeric per-particle column of the files")
+      ->capture_default_str();
+  sub.add_option("--scale", job.movie.scale,
+                 "Colour scale lin, log or auto (log for speed and first-collision, else lin)")
+      ->capture_default_str();
+  sub.add_option("--range", job.movie.range,
+                 "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
+                 "spans every frame's 1-99 percentiles)")
+      ->expected(2);
+  sub.add_flag("--range-per-frame", job.movie.range_per_frame,
+               "Each frame its own 1-99 percentile range");
+  sub.add_flag("--inset", job.movie.inset,
+               "A profile of density and mean speed against distance, bottom left");
+  sub.add_option("--colormap", job.movie.colormap, "Colormap name")->capture_default_str();
+  sub.add_option("--background", job.movie.background, "light or dark")->capture_default_str();
+  sub.add_flag("--show-inactive", job.movie.show_inactive,
+               "Also draw the particles at rest, in a faint neutral colour");
+  sub.add_option("--slab", job.movie.slab,
+                 "3D: keep a slab this thick through the centre, facing the camera (0: all)")
+      ->capture_default_str();
+  sub.add_flag("--clip", job.movie.clip,
+               "3D: cut away the half nearer than the plane through the front's centre");
+  sub.add_option("--azimuth", job.movie.azimuth, "3D: camera azimuth about z, degrees")
+      ->capture_default_str();
+  sub.add_option("--orbit", job.movie.orbit,
+                 "3D: total azimuth the camera turns over the movie, degrees")
+      ->capture_default_str();
+  sub.add_option("--elevation", job.movie.elevation, "3D: camera elevation, degrees")
+      ->capture_default_str();
+  sub.add_flag("--keep-frames", job.movie.keep_frames,
+               "Also write every frame as DIR/frames/*.png");
+  sub.add_option("--gl", job.movie.backend, "OpenGL context: auto, osmesa or egl")
+      ->capture_default_str();
 }
 
 }  // namespace
 
 void add_movie_command(CLI::App& app) {
-  struct Options {
-    PhysicsConfig physics;
-    std::string out = "grainshock-movie";
-    bool force = false;
-    FrontMovieOptions movie;
-    std::vector<std::string> files;
-  };
-  auto opt = std::make_shared<Options>();
+  auto opt = std::make_shared<MovieJob>();
   auto* sub = app.add_subcommand(
       "movie",
       "Simulate one realisation and stream it into DIR/movie.mp4, or draw stored snapshots");
-  sub->add_option("snapshots", opt->files,
-                  "Snapshot files to draw instead of simulating, in order of their Time");
-  add_config_option(*sub);
-  add_physics_options(*sub, opt->physics);
-  add_output_options(*sub, opt->out, opt->force, opt->movie.quiet);
-  sub->add_option("--frames", opt->movie.frames, "Number of frames")->capture_default_str();
-  sub->add_option("--frame-spacing", opt->movie.spacing,
-                  "Frame times: lin (t-max/N apart) or log (from --t-start to --t-max)")
-      ->capture_default_str();
-  sub->add_option("--t-start", opt->movie.t_start,
-                  "Time of the first frame with --frame-spacing log")
-      ->capture_default_str();
-  sub->add_option("--codec", opt->movie.movie.codec, "h264 (falls back to mpeg4), libx264 or mpeg4")
-      ->capture_default_str();
-  sub->add_option("--fps", opt->movie.movie.fps, "Frames per second of the movie")
-      ->capture_default_str();
-  sub->add_option("--crf", opt->movie.movie.crf,
-                  "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
-      ->capture_default_str();
-  sub->add_option("--width", opt->movie.movie.width, "Frame width in pixels")
-      ->capture_default_str();
-  sub->add_option("--height", opt->movie.movie.height, "Frame height in pixels")
-      ->capture_default_str();
-  sub->add_option("--camera", opt->movie.camera,
-                  "follow: the front, smoothly; fixed: the whole periodic box")
-      ->capture_default_str();
-  sub->add_option("--color-by", opt->movie.colour_by,
-                  "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
-                  "scaled-radial-velocity, radial-velocity, first-collision, none (one colour), "
-                  "or (stored snapshots) a numeric per-particle column of the files")
-      ->capture_default_str();
-  sub->add_option("--scale", opt->movie.scale,
-                  "Colour scale lin, log or auto (log for speed and first-collision, else lin)")
-      ->capture_default_str();
-  sub->add_option("--range", opt->movie.range,
-                  "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
-                  "spans every frame's 1-99 percentiles)")
-      ->expected(2);
-  sub->add_flag("--range-per-frame", opt->movie.range_per_frame,
-                "Each frame its own 1-99 percentile range");
-  sub->add_flag("--inset", opt->movie.inset,
-                "A profile of density and mean speed against distance, bottom left");
-  sub->add_option("--colormap", opt->movie.colormap, "Colormap name")->capture_default_str();
-  sub->add_option("--background", opt->movie.background, "light or dark")->capture_default_str();
-  sub->add_flag("--show-inactive", opt->movie.show_inactive,
-                "Also draw the particles at rest, in a faint neutral colour");
-  sub->add_option("--slab", opt->movie.slab,
-                  "3D: keep a slab this thick through the centre, facing the camera (0: all)")
-      ->capture_default_str();
-  sub->add_flag("--clip", opt->movie.clip,
-                "3D: cut away the half nearer than the plane through the front's centre");
-  sub->add_option("--azimuth", opt->movie.azimuth, "3D: camera azimuth about z, degrees")
-      ->capture_default_str();
-  sub->add_option("--orbit", opt->movie.orbit,
-                  "3D: total azimuth the camera turns over the movie, degrees")
-      ->capture_default_str();
-  sub->add_option("--elevation", opt->movie.elevation, "3D: camera elevation, degrees")
-      ->capture_default_str();
-  sub->add_flag("--keep-frames", opt->movie.keep_frames,
-                "Also write every frame as DIR/frames/*.png");
-  sub->add_option("--gl", opt->movie.backend, "OpenGL context: auto, osmesa or egl")
-      ->capture_default_str();
+  add_movie_flags(*sub, *opt);
+  sub->footer(
+      "A simulated movie keeps a checkpoint in DIR (at the start, every --checkpoint-every "
+      "seconds and on Ctrl-C) and writes its movie in parts, cut at each checkpoint, in "
+      "DIR/movie.parts; `grainshock resume DIR` goes on after a stop or a kill and joins the "
+      "parts into one movie.mp4 without encoding again. A stopped movie also leaves a playable "
+      "movie.mp4 of its frames so far.");
   sub->callback([opt, sub] {
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
           throw UserError(std::string(name) +
                           " sets up a simulation; a movie of stored snapshots takes none");
+      if (sub->get_option("--checkpoint-every")->count() > 0)
+        throw UserError(
+            "--checkpoint-every: a movie of stored snapshots keeps no checkpoint (it is made "
+            "again from its files)");
       // Every file is opened and the first frame read (and checked) before the folder is made.
       StoredMovie m = prepare_stored_movie(opt->files, opt->movie);
       std::error_code ec;
@@ -143,10 +168,48 @@ void add_movie_command(CLI::App& app) {
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);
     const auto dir = prepare_output_dir(opt->out, opt->force, kMovieOutputs);
-    write_movie_toml(dir, *sub, false);
-    const FrontMovieResult r = write_front_movie(opt->physics, opt->movie, dir);
+    lock_output_dir(dir);
+    remove_leftovers(dir);
+    const MovieCheckpoints checkpoints{write_movie_toml(dir, *sub, false), opt->checkpoint_every};
+    const FrontMovieResult r = write_front_movie(opt->physics, opt->movie, dir, &checkpoints);
     if (r.stopped) throw Exit{kExitInterrupted};
   });
+}
+
+bool is_movie_folder(const std::filesystem::path& dir) {
+  return std::filesystem::exists(dir / "movie.toml");
+}
+
+int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint_every) {
+  const auto file = dir / "movie.toml";
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  CLI::App app;
+  auto* sub = app.add_subcommand("movie");
+  MovieJob job;
+  add_movie_flags(*sub, job);
+  try {
+    app.parse(std::vector<std::string>{file.string(), "--config", "movie"});
+  } catch (const CLI::ParseError& e) {
+    throw UserError(file.string() + ": " + e.what());
+  }
+  if (!job.files.empty())
+    throw UserError("'" + dir.string() +
+                    "' holds a movie of stored snapshots, which keeps no checkpoint; make it "
+                    "again with: grainshock movie --config " +
+                    file.string() + " --out " + dir.string() + " --force");
+  validate(job.physics);
+  job.movie.quiet = quiet;
+  lock_output_dir(dir);
+  remove_leftovers(dir);
+  if (!std::filesystem::exists(movie_checkpoint_path(dir)) &&
+      !std::filesystem::exists(previous_movie_checkpoint_path(dir)) &&
+      std::filesystem::exists(dir / "movie.mp4"))
+    throw UserError("'" + dir.string() + "' holds a finished movie (movie.mp4): nothing to resume");
+  const MovieCheckpoints checkpoints{text.str(), checkpoint_every};
+  const FrontMovieResult r = resume_front_movie(job.physics, job.movie, dir, checkpoints);
+  return r.stopped ? kExitInterrupted : kExitSuccess;
 }
 
 }  // namespace gs::app

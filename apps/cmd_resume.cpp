@@ -1,5 +1,6 @@
-// `grainshock resume DIR`: continues a run folder from its last checkpoint (apps/run_job.h), or
-// an unfinished ensemble folder from its finished realisations (apps/ensemble_cli.h).
+// `grainshock resume DIR`: continues a run folder from its last checkpoint (apps/run_job.h), a
+// movie folder from its (apps/front_movie.h), or an unfinished ensemble folder from its finished
+// realisations (apps/ensemble_cli.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -23,9 +24,9 @@ void add_resume_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
       "resume",
-      "Continue a run folder from its last checkpoint, or an unfinished ensemble folder, after "
-      "Ctrl-C or a kill");
-  sub->add_option("DIR", opt->dir, "The run or ensemble folder (as given to --out)")->required();
+      "Continue a run or movie folder from its last checkpoint, or an unfinished ensemble "
+      "folder, after Ctrl-C or a kill");
+  sub->add_option("DIR", opt->dir, "The run, movie or ensemble folder (as given to --out)")->required();
   sub->add_flag("--quiet", opt->quiet, "Nothing on stderr but errors");
   add_checkpoint_option(*sub, opt->checkpoint_every);
   sub->add_option("--threads", opt->threads, "Ensemble folders: worker threads")
@@ -37,9 +38,15 @@ void add_resume_command(CLI::App& app) {
       "checkpoint, a finished run, a run.toml that is not the checkpoint's, a checkpoint that "
       "is truncated, corrupt or from another version or build. An ensemble folder (with "
       "ensemble.toml) runs only its missing realisations, to the same files as an ensemble "
-      "never stopped.");
+      "never stopped. A movie folder (with movie.toml) goes on from its checkpoint and ends "
+      "with the frames of a movie never stopped (its parts joined without encoding again).");
   sub->callback([opt] {
     const std::filesystem::path dir(opt->dir);
+    if (is_movie_folder(dir)) {
+      const int rc = resume_movie(dir, opt->quiet, opt->checkpoint_every);
+      if (rc != 0) throw Exit{rc};
+      return;
+    }
     if (std::filesystem::exists(dir / "ensemble.toml")) {
       const int rc = resume_ensemble(dir, opt->threads, opt->quiet);
       if (rc != 0) throw Exit{rc};

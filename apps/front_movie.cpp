@@ -3,7 +3,9 @@
 // reproducible from (config, seed), so it replays the same trajectory). The following camera is
 // aimed from each frame and those before it (render/follow_camera.h), so it needs no pass ahead.
 // Stored snapshots are drawn in the order given, each read once, while they prove to be in order
-// of time; if they are not, the movie starts again after a pass that orders them.
+// of time; if they are not, the movie starts again after a pass that orders them. A live movie
+// can keep checkpoints: its movie is then written in parts (render/movie_parts.h), cut where a
+// checkpoint is taken, and a resume goes on from the last one and joins the parts at the end.
 #include "apps/front_movie.h"
 
 #include <algorithm>
@@ -16,13 +18,16 @@
 #include <numbers>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include "apps/progress.h"
 #include "render/camera.h"
 #include "render/field.h"
 #include "render/follow_camera.h"
+#include "render/movie_parts.h"
 #include "render/png.h"
 #include "render/renderer.h"
+#include "sim/checkpoint.h"
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/format.h"
@@ -65,25 +70,40 @@ std::vector<double> frame_times(const PhysicsConfig& physics, const FrontMovieOp
   return t;
 }
 
-// Advances to each frame time in slices that depend only on the times, so that both passes see
-// the same trajectory, and a stop request is noticed within a fraction of a second. Returns
-// false if stopped.
+// Where a live movie keeps checkpoints: `due` says when one is; `write` takes it, `next` being
+// the frame to draw next. Without `write`, none.
+struct PauseHook {
+  std::function<bool()> due;
+  std::function<void(std::size_t next, const Simulation& sim)> write;
+};
+
+// Advances to each frame time from frame `first` on, in slices that depend only on the
+// simulated time (where a slice ends does not change the history), so that both passes and a
+// resumed movie see the same trajectory, and a stop request or a checkpoint falling due is
+// noticed within a fraction of a second. A stop writes a checkpoint first. Returns false if
+// stopped.
 template <class Visit>
-bool for_each_frame(Simulation& sim, const std::vector<double>& times, Progress& progress,
-                    const char* pass, Visit visit) {
+bool for_each_frame(Simulation& sim, const std::vector<double>& times, std::size_t first,
+                    Progress& progress, const char* pass, Visit visit, const PauseHook& hook) {
   const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < times.size(); ++k) {
+  const auto events0 = sim.stats().events;
+  auto halt = [&](std::size_t next) {
+    const bool stop = stop_requested();
+    if (hook.write && (stop || hook.due())) hook.write(next, sim);
+    return stop;
+  };
+  for (std::size_t k = first; k < times.size(); ++k) {
     while (sim.time() < times[k]) {
       sim.run_until(std::min(times[k], sim.time() + std::max(1.0, 0.01 * sim.time())));
-      if (stop_requested()) return false;
+      if (halt(k)) return false;
     }
     visit(k);
     char what[160];
     std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g, %.3g events/s", pass, k + 1,
                   times.size(), times[k],
-                  double(sim.stats().events) / std::max(1e-9, seconds_since(t0)));
+                  double(sim.stats().events - events0) / std::max(1e-9, seconds_since(t0)));
     progress.update(double(k + 1) / times.size(), what);
-    if (stop_requested()) return false;
+    if (halt(k + 1)) return false;
   }
   return true;
 }
@@ -224,24 +244,36 @@ class Frames {
                     const std::function<void(std::size_t, const Snapshot&)>& visit) = 0;
 };
 
-// A running simulation, replayed from the start on each pass.
+// A running simulation, replayed from the start on each pass, or from a checkpoint's state.
 class LiveFrames final : public Frames {
  public:
   LiveFrames(const PhysicsConfig& physics, std::vector<double> times)
       : physics_(physics), times_(std::move(times)) {}
   std::size_t size() const override { return times_.size(); }
+  // The next pass goes on from `sim`, whose next frame is `next`.
+  void start_at(std::unique_ptr<Simulation> sim, std::size_t next) {
+    start_ = std::move(sim);
+    first_ = next;
+  }
   bool each(Progress& progress, const char* pass,
             const std::function<void(std::size_t, const Snapshot&)>& visit) override {
-    auto sim = make_simulation(physics_);
-    return for_each_frame(*sim, times_, progress, pass, [&](std::size_t k) {
-      sim->snapshot(snap_);
-      visit(k, snap_);
-    });
+    auto sim = start_ ? std::move(start_) : make_simulation(physics_);
+    const std::size_t first = std::exchange(first_, 0);
+    return for_each_frame(
+        *sim, times_, first, progress, pass,
+        [&](std::size_t k) {
+          sim->snapshot(snap_);
+          visit(k, snap_);
+        },
+        hook);
   }
+  PauseHook hook;  // the checkpoints of the next pass
 
  private:
   PhysicsConfig physics_;
   std::vector<double> times_;
+  std::unique_ptr<Simulation> start_;
+  std::size_t first_ = 0;
   Snapshot snap_;  // reused frame after frame
 };
 
@@ -420,16 +452,23 @@ class KeptFrames {
   std::vector<std::filesystem::path> written_;
 };
 
-// The second pass, the one frame loop of every movie: aims the camera, renders, encodes.
+render::FollowCamera make_follow(int dim, const render::View& view, const FrontMovieOptions& o) {
+  return render::FollowCamera(dim, double(view.width) / view.height, view.margin,
+                              static_cast<int>(o.movie.fps / 2));
+}
+
+// The second pass, the one frame loop of every movie: aims the camera (`follow`, made at the
+// first frame unless a resumed movie brings its own), renders, encodes. A stopped movie that
+// will be resumed (`resumable`) keeps its parts beside the movie of its frames so far.
 FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovieOptions& o,
-                             KeptFrames& pngs, render::MovieWriter& movie,
-                             render::Renderer& renderer, const char* pass) {
+                             KeptFrames& pngs, render::MovieParts& movie,
+                             std::optional<render::FollowCamera>& follow,
+                             render::Renderer& renderer, const char* pass, bool resumable) {
   const render::Style& style = p.plan.style;
   render::View view = p.plan.view;
   const std::size_t n = frames.size();
   double render_s = 0, png_s = 0, encode_s = 0;
   bool stopped = p.stopped;
-  std::optional<render::FollowCamera> follow;
   if (!stopped) {
     Progress progress(o.quiet);
     stopped = !frames.each(progress, pass, [&](std::size_t k, const Snapshot& snap) {
@@ -438,9 +477,7 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       const bool cut = snap.info.dim == 3 && (view.slab > 0 || view.clip);
       const FrameScan f = p.plan.follow || cut ? scan(snap, style, false) : FrameScan{};
       if (p.plan.follow) {
-        if (!follow)
-          follow.emplace(snap.info.dim, double(view.width) / view.height, view.margin,
-                         static_cast<int>(o.movie.fps / 2));
+        if (!follow) follow.emplace(make_follow(snap.info.dim, view, o));
         aim(view, follow->next(f.front, f.radius), snap, f);
       } else if (cut) {
         // A fixed camera sees the wrapped box: the cut goes through the front's wrapped centre.
@@ -468,7 +505,7 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
   const auto t0 = std::chrono::steady_clock::now();
   const auto written = movie.frames_added();
   if (written > 0)
-    movie.finish();
+    movie.finish(stopped && resumable);
   else
     movie.discard();  // a movie without a frame would only pretend to be one
   pngs.keep();
@@ -510,26 +547,198 @@ void check_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o)
   make_live_plan(physics, o);
 }
 
-FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
-                                   const std::filesystem::path& dir) {
+std::filesystem::path movie_checkpoint_path(const std::filesystem::path& dir) {
+  return dir / "movie.checkpoint.bin";
+}
+
+std::filesystem::path previous_movie_checkpoint_path(const std::filesystem::path& dir) {
+  return dir / "movie.checkpoint.prev.bin";
+}
+
+namespace {
+
+enum Pass : std::uint32_t { kRangePass = 1, kMoviePass = 2 };
+
+// A live movie's checkpoints (sim/checkpoint.h): the pass and the frame reached, the colour
+// ranges pass 1 has found, the following camera, the parts of the movie on disk and the engine.
+// Each is written whole, the previous one kept until it is in place.
+class LiveCheckpoints {
+ public:
+  LiveCheckpoints(const std::filesystem::path& dir, const MovieCheckpoints& c,
+                  const PhysicsConfig& physics)
+      : dir_(dir),
+        spec_(c.spec),
+        every_(c.every),
+        id_{physics.dim, static_cast<std::uint64_t>(physics.particles)} {}
+  // The first is due at once, so that a kill at any moment leaves one; then every `every` s.
+  bool due() const { return !any_ || (every_ > 0 && seconds_since(last_) >= every_); }
+  void resumed() {
+    any_ = true;
+    last_ = std::chrono::steady_clock::now();
+  }
+  void write(Pass pass, std::size_t next, std::size_t frames, const std::vector<FrameScan>& scans,
+             const std::optional<render::FollowCamera>& follow, const render::MovieParts& movie,
+             const Simulation& sim) {
+    CheckpointWriter out(movie_checkpoint_path(dir_), previous_movie_checkpoint_path(dir_), id_);
+    out.string(spec_);
+    out.value(static_cast<std::uint32_t>(pass));
+    out.value(static_cast<std::uint64_t>(next));
+    out.value(static_cast<std::uint64_t>(frames));
+    out.value(static_cast<std::uint64_t>(scans.size()));
+    for (const FrameScan& f : scans) {  // all that fixed_range() reads of them
+      out.value(static_cast<std::uint8_t>(f.any_active));
+      out.value(f.range.first);
+      out.value(f.range.second);
+    }
+    out.value(static_cast<std::uint8_t>(follow.has_value()));
+    if (follow) follow->save(out);
+    out.value(static_cast<std::int32_t>(movie.parts()));
+    out.value(static_cast<std::int64_t>(movie.frames_added()));
+    sim.save(out);
+    out.commit();
+    resumed();
+  }
+  void remove() const {
+    std::error_code ec;
+    std::filesystem::remove(movie_checkpoint_path(dir_), ec);
+    std::filesystem::remove(previous_movie_checkpoint_path(dir_), ec);
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::string spec_;
+  double every_;
+  CheckpointIdentity id_;
+  bool any_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// What a live movie goes on from.
+struct Resumed {
+  Pass pass = kRangePass;
+  std::size_t next = 0;
+  std::vector<FrameScan> scans;
+  std::optional<render::FollowCamera> follow;
+  int parts = 0;
+  std::int64_t part_frames = 0;
+  std::unique_ptr<Simulation> sim;
+};
+
+// Reads dir's checkpoint, refusing (UserError, one line; nothing touched) a folder without one,
+// one that CheckpointReader refuses, and one of another movie.toml. `camera` is the following
+// camera as this movie makes it, to be loaded with the state.
+Resumed read_live_checkpoint(const std::filesystem::path& dir, const MovieCheckpoints& c,
+                             const PhysicsConfig& physics, const Plan& plan, std::size_t frames,
+                             const render::FollowCamera& camera) {
+  const std::filesystem::path file = checkpoint_to_resume(
+      movie_checkpoint_path(dir), previous_movie_checkpoint_path(dir), "movie checkpoint");
+  CheckpointReader in(file);
+  if (in.string() != c.spec)
+    throw UserError("the checkpoint '" + file.string() + "' is of another movie than '" +
+                    (dir / "movie.toml").string() + "' describes");
+  Resumed r;
+  const auto pass = in.value<std::uint32_t>();
+  in.expect(pass == kRangePass || (pass == kMoviePass));
+  r.pass = static_cast<Pass>(pass);
+  r.next = in.value<std::uint64_t>();
+  in.expect(in.value<std::uint64_t>() == frames && r.next <= frames);
+  const auto scans = in.value<std::uint64_t>();
+  in.expect(scans == (r.pass == kRangePass ? r.next : plan.need_range ? frames : 0));
+  r.scans.resize(scans);
+  for (FrameScan& f : r.scans) {
+    f.any_active = in.value<std::uint8_t>() != 0;
+    in.value(f.range.first);
+    in.value(f.range.second);
+  }
+  if (in.value<std::uint8_t>()) {
+    r.follow.emplace(camera);
+    r.follow->load(in);
+  }
+  r.parts = in.value<std::int32_t>();
+  r.part_frames = in.value<std::int64_t>();
+  // Every frame before the next one is in a whole part.
+  in.expect(r.parts >= 0 && r.part_frames >= r.parts &&
+            r.part_frames == (r.pass == kMoviePass ? std::int64_t(r.next) : 0));
+  r.sim = load_simulation(physics, in);
+  in.finish();
+  return r;
+}
+
+// Every live movie: the range pass if one is needed, then the movie; with `checkpoints`, in
+// parts and with checkpoints; with `resume` too, from dir's checkpoint on.
+FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                            const std::filesystem::path& dir, const MovieCheckpoints* checkpoints,
+                            bool resume) {
   Prepared p;
   p.plan = make_live_plan(physics, o);
   LiveFrames frames(physics, frame_times(physics, o));
+  std::optional<LiveCheckpoints> ck;
+  if (checkpoints) ck.emplace(dir, *checkpoints, physics);
+  Pass pass = p.plan.need_range ? kRangePass : kMoviePass;
+  Resumed r;
+  if (resume) {
+    r = read_live_checkpoint(dir, *checkpoints, physics, p.plan, frames.size(),
+                             make_follow(physics.dim, p.plan.view, o));
+    const auto movie = dir / "movie.mp4";
+    if (!render::MovieParts::on_disk(movie, r.parts) && std::filesystem::exists(movie)) {
+      // Parts are removed only once the movie is joined: the kill came after that.
+      ck->remove();
+      std::error_code ec;
+      std::filesystem::remove_all(render::MovieParts::folder(movie), ec);
+      if (!o.quiet)
+        std::fprintf(stderr, "grainshock: %s had finished; its leftover checkpoints are removed\n",
+                     dir.c_str());
+      return {r.part_frames, false};
+    }
+    pass = r.pass;
+    p.scans = std::move(r.scans);
+    frames.start_at(std::move(r.sim), r.next);
+    ck->resumed();
+  }
   KeptFrames pngs(dir, o.keep_frames);
   // Opened now so that an unwritable folder is reported before any work.
-  render::MovieWriter movie(dir / "movie.mp4", o.movie);
+  render::MovieParts movie(dir / "movie.mp4", o.movie, r.parts, r.part_frames);
+  std::optional<render::FollowCamera>& follow = r.follow;
   render::Renderer renderer(p.plan.backend);
   install_stop_handlers();
-  if (p.plan.need_range) {
+  auto due = [&] { return ck->due(); };
+  if (pass == kRangePass) {
+    if (ck)
+      frames.hook = {due, [&](std::size_t next, const Simulation& sim) {
+                       ck->write(kRangePass, next, frames.size(), p.scans, follow, movie, sim);
+                     }};
     Progress progress(o.quiet);
     p.stopped = !frames.each(progress, "pass 1 of 2 (range)", [&](std::size_t, const Snapshot& s) {
       p.scans.push_back(scan(s, p.plan.style, true));
     });
     progress.done();
-    finish_first_pass(p);
   }
-  return render_pass(frames, p, o, pngs, movie, renderer,
-                     p.scans.empty() ? "movie" : "pass 2 of 2 (movie)");
+  finish_first_pass(p);
+  if (ck)
+    frames.hook = {due, [&](std::size_t next, const Simulation& sim) {
+                     movie.cut();  // the parts a checkpoint names are on disk before it
+                     ck->write(kMoviePass, next, frames.size(), p.scans, follow, movie, sim);
+                   }};
+  const FrontMovieResult result =
+      render_pass(frames, p, o, pngs, movie, follow, renderer,
+                  p.scans.empty() ? "movie" : "pass 2 of 2 (movie)", ck.has_value());
+  // The movie is in place; the parts go after the checkpoints, with `movie`.
+  if (ck && !result.stopped) ck->remove();
+  return result;
+}
+
+}  // namespace
+
+FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                                   const std::filesystem::path& dir,
+                                   const MovieCheckpoints* checkpoints) {
+  return live_movie(physics, o, dir, checkpoints, false);
+}
+
+FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                                    const std::filesystem::path& dir,
+                                    const MovieCheckpoints& checkpoints) {
+  return live_movie(physics, o, dir, &checkpoints, true);
 }
 
 struct StoredMovie::Impl {
@@ -646,7 +855,8 @@ FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path&
   render::Renderer renderer(p.plan.backend);
   if (!impl.ordered && !p.stopped) {
     KeptFrames pngs(dir, o.keep_frames);
-    render::MovieWriter movie(dir / "movie.mp4", o.movie);
+    render::MovieParts movie(dir / "movie.mp4", o.movie);
+    std::optional<render::FollowCamera> follow;
     // (time, step) of the frame before; held by the check, which outlives this call.
     auto before = std::make_shared<std::pair<double, std::int64_t>>(-INFINITY, 0);
     p.check = [&impl, before](std::size_t k, const Snapshot& s) {
@@ -656,7 +866,7 @@ FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path&
       *before = at;
     };
     try {
-      return render_pass(impl.frames, p, o, pngs, movie, renderer, "movie");
+      return render_pass(impl.frames, p, o, pngs, movie, follow, renderer, "movie", false);
     } catch (const OutOfOrder&) {
       movie.discard();  // and the PNGs go with `pngs`
     }
@@ -664,9 +874,10 @@ FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path&
   }
   p.check = nullptr;  // the pass that ordered the frames checked them
   KeptFrames pngs(dir, o.keep_frames);
-  render::MovieWriter movie(dir / "movie.mp4", o.movie);
-  return render_pass(impl.frames, p, o, pngs, movie, renderer,
-                     impl.ordered ? "pass 2 of 2 (movie)" : "movie");
+  render::MovieParts movie(dir / "movie.mp4", o.movie);
+  std::optional<render::FollowCamera> follow;
+  return render_pass(impl.frames, p, o, pngs, movie, follow, renderer,
+                     impl.ordered ? "pass 2 of 2 (movie)" : "movie", false);
 }
 
 }  // namespace gs::app

@@ -45,10 +45,30 @@ struct FrontMovieResult {
   bool stopped = false;     // by SIGINT/SIGTERM (sim/stop.h); the movie is complete all the same
 };
 
+// How a live movie keeps checkpoints (`grainshock movie`; `run --movie`, whose run is
+// checkpointed, makes its movie again after a resume instead).
+struct MovieCheckpoints {
+  std::string spec;    // the text of movie.toml: a resume refuses the checkpoint of another movie
+  double every = 300;  // wall seconds between checkpoints; 0: at the start and on a stop only
+};
+
+std::filesystem::path movie_checkpoint_path(const std::filesystem::path& dir);
+std::filesystem::path previous_movie_checkpoint_path(const std::filesystem::path& dir);
+
 // Writes dir/movie.mp4 (dir must exist). A stop request ends it early with a playable movie of
-// the frames so far, or no file if there were none.
+// the frames so far, or no file if there were none. With `checkpoints`, the movie is written in
+// parts (render/movie_parts.h), cut at each checkpoint; a stopped movie keeps its parts and
+// checkpoint for resume_front_movie, and a finished one removes them.
 FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
-                                   const std::filesystem::path& dir);
+                                   const std::filesystem::path& dir,
+                                   const MovieCheckpoints* checkpoints = nullptr);
+// Goes on from dir's checkpoint and ends with the movie of the frames an uninterrupted
+// write_front_movie draws (the same PNGs with --keep-frames; the movie's parts are joined
+// without encoding again). UserError, with nothing touched, for a folder without a
+// checkpoint, one refused by sim/checkpoint.h and one of another movie.toml.
+FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
+                                    const std::filesystem::path& dir,
+                                    const MovieCheckpoints& checkpoints);
 
 // A movie of stored snapshots, prepared so that bad input (a file that cannot be opened, flags
 // that do not fit the first frame) is refused before an output folder is made.

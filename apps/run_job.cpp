@@ -33,7 +33,8 @@ constexpr double kFig1Times[] = {5000, 10000, 20000, 50000};
 // What a run writes; --force clears these (and nothing else) before a new run.
 constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary.json",
                                        "timing.json", "checkpoint.bin", "checkpoint.prev.bin",
-                                       "movie.mp4",   "snapshots",      "frames"};
+                                       "movie.mp4",   "movie.parts",    "snapshots",
+                                       "frames"};
 
 // The stages of a job after sampling, kept in checkpoints: a resume redoes the unfinished one.
 enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1 };

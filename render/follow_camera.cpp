@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sim/checkpoint.h"
+
 namespace gs::render {
 
 FollowCamera::FollowCamera(int dim, double aspect, double margin, int window)
@@ -25,6 +27,17 @@ Shot FollowCamera::next(const Eigen::AlignedBox3d& front, double radius) {
   half_ = std::max({half_, need, min_half});
   shot.half = half_;
   return shot;
+}
+
+void FollowCamera::save(CheckpointWriter& out) const {
+  out.vector(centres_);
+  out.value(half_);
+}
+
+void FollowCamera::load(CheckpointReader& in) {
+  in.vector(centres_);
+  in.expect(centres_.size() <= window_ + 1);
+  in.value(half_);
 }
 
 }  // namespace gs::render

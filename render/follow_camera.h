@@ -7,6 +7,11 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+namespace gs {
+class CheckpointWriter;
+class CheckpointReader;
+}  // namespace gs
+
 namespace gs::render {
 
 struct Shot {
@@ -22,6 +27,12 @@ class FollowCamera {
   // front: the box of the particles to keep in view; radius: of the sphere about its centre
   // that holds them (what 3D frames).
   Shot next(const Eigen::AlignedBox3d& front, double radius);
+
+  // What the frames so far taught it, for a movie's checkpoint: a camera loaded from it aims
+  // the next frames as this one would.
+  void save(CheckpointWriter& out) const;
+  // Refuses (as corrupt) a state of another window.
+  void load(CheckpointReader& in);
 
  private:
   int dim_;

@@ -72,6 +72,16 @@ std::string field(const char (&f)[32]) {
 
 }  // namespace
 
+std::filesystem::path checkpoint_to_resume(const std::filesystem::path& path,
+                                           const std::filesystem::path& previous,
+                                           const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) return path;
+  if (std::filesystem::exists(previous, ec)) return previous;
+  throw UserError("'" + path.parent_path().string() + "' holds no " + what + " (" +
+                  path.filename().string() + ") to resume from");
+}
+
 const char* instruction_set() {
 #if defined(__x86_64__) && defined(__AVX2__)
   return "x86-64-v3";

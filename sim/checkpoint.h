@@ -65,6 +65,13 @@ class CheckpointWriter {
   bool finished_ = false;
 };
 
+// The checkpoint to resume from: `path`, else `previous` (a kill between the two renames of a
+// commit leaves only that one). UserError "'FOLDER' holds no WHAT (NAME) to resume from" when
+// neither exists.
+std::filesystem::path checkpoint_to_resume(const std::filesystem::path& path,
+                                           const std::filesystem::path& previous,
+                                           const std::string& what);
+
 // Reads a whole checkpoint, refusing (UserError, one line naming the file) a file that is not
 // one, from another format, program version or instruction set, truncated, or corrupt.
 class CheckpointReader {

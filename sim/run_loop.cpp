@@ -114,13 +114,8 @@ RunLoop::RunLoop(const RunPlan& plan, const std::filesystem::path& dir, const st
 std::unique_ptr<RunLoop> RunLoop::resume(const RunPlan& plan, const std::filesystem::path& dir,
                                          const std::string& spec) {
   const double t0 = wall_now();
-  std::filesystem::path file = checkpoint_path(dir);
-  std::error_code ec;
-  // A kill between the two renames of a commit leaves only the previous one.
-  if (!std::filesystem::exists(file, ec)) file = previous_checkpoint_path(dir);
-  if (!std::filesystem::exists(file, ec))
-    throw UserError("'" + dir.string() + "' holds no checkpoint (" +
-                    checkpoint_path(dir).filename().string() + ") to resume from");
+  const std::filesystem::path file =
+      checkpoint_to_resume(checkpoint_path(dir), previous_checkpoint_path(dir), "checkpoint");
   CheckpointReader in(file);
   if (in.string() != spec)
     throw UserError("the checkpoint '" + file.string() + "' is of another run than '" +

@@ -7,12 +7,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 extern char** environ;
@@ -95,6 +99,35 @@ inline pid_t spawn_grainshock(const std::string& args, const std::string& err = 
     throw std::runtime_error("cannot start " + argv_words[0] + ": posix_spawn " +
                              std::to_string(rc));
   return pid;
+}
+
+// Runs `grainshock COMMAND OPTIONS --checkpoint-every 0.05 --out DIR` and kills it with SIGKILL
+// at a random moment (up to `max_delay_ms`) once it has written `DIR/CHECKPOINT`, `kills`
+// times, each time going on with `grainshock resume`; then lets the last one end, which must
+// succeed.
+inline void kill_and_resume(const std::string& command, const std::string& options,
+                            const std::filesystem::path& dir, const std::string& checkpoint,
+                            int kills, int max_delay_ms, std::mt19937& random) {
+  std::string args = command + " " + options + " --checkpoint-every 0.05 --out " + dir.string();
+  for (int k = 0; k <= kills; ++k) {
+    const pid_t pid = spawn_grainshock(args);
+    if (k < kills) {
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+      while (!std::filesystem::exists(dir / checkpoint) &&
+             std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      std::this_thread::sleep_for(
+          std::chrono::milliseconds(std::uniform_int_distribution<int>(0, max_delay_ms)(random)));
+      kill(pid, SIGKILL);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    if (WIFEXITED(status)) {  // it finished before the kill
+      ASSERT_EQ(WEXITSTATUS(status), 0) << args;
+      return;
+    }
+    args = "resume --quiet --checkpoint-every 0.05 " + dir.string();
+  }
 }
 
 }  // namespace gs::test

@@ -35,31 +35,6 @@ std::map<std::string, std::string> files_of(const fs::path& dir) {
   return out;
 }
 
-// Kills a child run (or resume) with SIGKILL at a random moment once it has made its first
-// checkpoint, `kills` times, resuming after each; then resumes to the end.
-void kill_and_resume(const std::string& run_args, const fs::path& dir, int kills,
-                     std::mt19937& random) {
-  std::string args = "run " + run_args + " --checkpoint-every 0.05 --out " + dir.string();
-  for (int k = 0; k <= kills; ++k) {
-    const pid_t pid = spawn_grainshock(args);
-    if (k < kills) {
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-      while (!fs::exists(dir / "checkpoint.bin") && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-      std::this_thread::sleep_for(
-          std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 400)(random)));
-      kill(pid, SIGKILL);
-    }
-    int status = 0;
-    ASSERT_EQ(waitpid(pid, &status, 0), pid);
-    if (WIFEXITED(status)) {  // it finished before the kill
-      ASSERT_EQ(WEXITSTATUS(status), 0) << args;
-      return;
-    }
-    args = "resume --quiet --checkpoint-every 0.05 " + dir.string();
-  }
-}
-
 void expect_same_folder(const fs::path& a, const fs::path& b) {
   const auto fa = files_of(a), fb = files_of(b);
   std::set<std::string> na, nb;
@@ -91,7 +66,7 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
                cut = scratch_dir("cut" + std::to_string(n));
     ++n;
     ASSERT_EQ(grainshock("run " + c + " --quiet --out " + ref.string()).exit_code, 0);
-    kill_and_resume(c + " --quiet", cut, 2, random);
+    test::kill_and_resume("run", c + " --quiet", cut, "checkpoint.bin", 2, 400, random);
     expect_same_folder(ref, cut);
     EXPECT_FALSE(fs::exists(cut / "checkpoint.bin")) << "a finished run keeps no checkpoint";
   }

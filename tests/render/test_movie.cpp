@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ extern "C" {
 #include <libavcodec/avcodec.h>
 }
 
+#include "render/movie_parts.h"
 #include "render/movie_writer.h"
 #include "sim/error.h"
 #include "sim/stop.h"
@@ -429,6 +431,121 @@ TEST(MovieWriter, DiscardLeavesNoFileAndDestructorFinishes) {
   }
   EXPECT_EQ(files_in(dir), std::vector<fs::path>{"kept.mp4"});
   EXPECT_EQ(decode_movie(dir / "kept.mp4").frames, 7);
+}
+
+// Frames of `sizes` parts, cut after each, of the test scene numbered on from `first`.
+void add_parts(MovieParts& movie, const MovieOptions& o, const std::vector<int>& sizes,
+               int first = 0) {
+  int k = first;
+  for (int n : sizes) {
+    for (int j = 0; j < n; ++j) movie.add(scene(o.width, o.height, k++));
+    movie.cut();
+  }
+}
+
+MovieOptions small_movie(const std::string& codec = "h264") {
+  MovieOptions o;
+  o.width = 160;
+  o.height = 120;
+  o.fps = 24;
+  o.codec = codec;
+  return o;
+}
+
+// Parts of one frame, of two and of more than a group of B-frames: the joined movie plays every
+// frame once, in order and at its time, for both codecs.
+TEST(MovieParts, JoinedPartsPlayAsOneMovie) {
+  for (const std::string codec : {"h264", "mpeg4"}) {
+    const auto dir = fresh_dir("parts_" + codec);
+    const MovieOptions o = small_movie(codec);
+    const std::vector<int> sizes = {1, 2, 7, 1, 5};
+    const int n = 16;
+    {
+      MovieParts movie(dir / "movie.mp4", o);
+      add_parts(movie, o, sizes);
+      EXPECT_EQ(movie.parts(), 5);
+      EXPECT_EQ(movie.frames_added(), n);
+      EXPECT_TRUE(movie.finish());
+    }
+    EXPECT_EQ(files_in(dir), std::vector<fs::path>{"movie.mp4"}) << "the parts are removed";
+    for (int k = 0; k < n; ++k) {
+      const Decoded d = decode_movie(dir / "movie.mp4", k);
+      ASSERT_EQ(d.frames, n) << codec;
+      EXPECT_EQ(d.nb_frames, n);
+      EXPECT_NEAR(d.duration, n / 24.0, 1e-3);
+      EXPECT_EQ(av_cmp_q(d.avg_frame_rate, AVRational{24, 1}), 0);
+      ASSERT_EQ(d.rgb.width, 160);
+      EXPECT_GE(psnr(d.rgb, scene(160, 120, k), 160, 120), kMinPsnr) << codec << " frame " << k;
+      // Frame k is not its neighbour: the parts are joined in order.
+      EXPECT_LT(psnr(d.rgb, scene(160, 120, k + 2), 160, 120), kMinPsnr) << codec << " " << k;
+    }
+  }
+}
+
+// An uncut movie is renamed, not joined: the same bytes as one MovieWriter writes.
+TEST(MovieParts, OnePartIsTheMovieOfOneWriter) {
+  const auto dir = fresh_dir("parts_one");
+  const MovieOptions o = small_movie();
+  write_scene(dir / "writer.mp4", o, 9);
+  {
+    MovieParts movie(dir / "parts.mp4", o);
+    for (int k = 0; k < 9; ++k) movie.add(scene(o.width, o.height, k));
+    movie.finish();
+  }
+  auto bytes = [](const fs::path& p) {
+    std::FILE* f = std::fopen(p.c_str(), "rb");
+    std::string s;
+    for (int c; (c = std::fgetc(f)) != EOF;) s += static_cast<char>(c);
+    std::fclose(f);
+    return s;
+  };
+  EXPECT_EQ(bytes(dir / "writer.mp4"), bytes(dir / "parts.mp4"));
+  EXPECT_FALSE(fs::exists(MovieParts::folder(dir / "parts.mp4")));
+}
+
+// Going on after two parts, as a resume does: what a kill left after them (a third part and a
+// partial fourth) is removed, and the movie ends as if never stopped.
+TEST(MovieParts, GoesOnAfterTheCheckpointedParts) {
+  const auto dir = fresh_dir("parts_resume");
+  const MovieOptions o = small_movie();
+  {
+    MovieParts movie(dir / "movie.mp4", o);
+    add_parts(movie, o, {3, 4, 2});
+    movie.add(scene(o.width, o.height, 9));
+    movie.keep();
+    // A kill: the writer of the open part never finishes, its temporary file stays.
+    std::ofstream(MovieParts::folder(dir / "movie.mp4") / ".part_0003.mp4.999.partial") << "x";
+  }
+  {
+    MovieParts movie(dir / "movie.mp4", o, 2, 7);
+    const fs::path parts = MovieParts::folder(dir / "movie.mp4");
+    EXPECT_FALSE(fs::exists(parts / "part_0002.mp4"));
+    EXPECT_FALSE(fs::exists(parts / ".part_0003.mp4.999.partial"));
+    EXPECT_TRUE(fs::exists(parts / "part_0001.mp4"));
+    add_parts(movie, o, {5}, 7);
+    EXPECT_EQ(movie.frames_added(), 12);
+    movie.finish();
+  }
+  for (int k : {0, 6, 7, 11}) {
+    const Decoded d = decode_movie(dir / "movie.mp4", k);
+    ASSERT_EQ(d.frames, 12);
+    EXPECT_GE(psnr(d.rgb, scene(160, 120, k), 160, 120), kMinPsnr) << "frame " << k;
+  }
+  // A checkpoint naming a part that is gone is refused.
+  EXPECT_THROW(MovieParts(dir / "movie.mp4", o, 1, 3), UserError);
+}
+
+TEST(MovieParts, PartsOfOtherSettingsAreNotJoined) {
+  const auto dir = fresh_dir("parts_mismatch");
+  MovieOptions a = small_movie(), b = small_movie();
+  b.width = 128;
+  write_scene(dir / "a.mp4", a, 3);
+  write_scene(dir / "b.mp4", b, 3);
+  EXPECT_THROW(join_movies({dir / "a.mp4", dir / "b.mp4"}, dir / "ab.mp4"), UserError);
+  EXPECT_FALSE(fs::exists(dir / "ab.mp4"));
+  std::ofstream(dir / "junk.mp4") << "not a movie";
+  EXPECT_THROW(join_movies({dir / "a.mp4", dir / "junk.mp4"}, dir / "aj.mp4"), UserError);
+  EXPECT_EQ(files_in(dir).size(), 3u) << "no temporary left";
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -435,10 +436,103 @@ TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   const auto pngs = names_in(dir / "frames").size();
   EXPECT_GE(pngs, 11u);
   EXPECT_LT(pngs, 20000u);
-  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frames", "movie.mp4", "movie.toml"}));
+  // Beside the movie so far, what `grainshock resume` goes on from.
+  EXPECT_EQ(names_in(dir),
+            (std::vector<std::string>{"frames", "movie.checkpoint.bin", "movie.checkpoint.prev.bin",
+                                      "movie.mp4", "movie.parts", "movie.toml"}));
   const Decoded d = decode_movie(dir / "movie.mp4");
   EXPECT_EQ(d.frames, static_cast<int>(pngs)) << "every rendered frame is in the movie";
   EXPECT_NEAR(d.duration, pngs / 30.0, 1e-3);
+}
+
+// A movie killed at random moments (the seed is printed so that a failure can be replayed) and
+// resumed draws the very frames of one never stopped: its --keep-frames PNGs are the same bytes,
+// in 2D and in a 3D slab, with and without the pass that finds the colour range. Its movie is
+// the parts joined without encoding again: every frame at its time, each within the encoder's
+// error of the same frame of the uninterrupted movie.
+TEST(MovieCommand, KilledAtRandomMomentsAndResumedDrawsTheSameFrames) {
+  const unsigned seed = static_cast<unsigned>(std::random_device{}());
+  std::mt19937 random(seed);
+  SCOPED_TRACE("random seed " + std::to_string(seed));
+  const std::string cases[] = {
+      "--particles 100000 --t-max 60000 --frames 60",
+      "--particles 100000 --t-max 60000 --frames 40 --color-by speed",  // the range pass
+      "--dim 3 --particles 60000 --t-max 10000 --frames 40 --restitution 0.5",
+  };
+  int n = 0;
+  for (const std::string& c : cases) {
+    SCOPED_TRACE(c);
+    const std::string args = c + " --width 192 --height 144 --keep-frames --quiet";
+    const auto ref = fresh_dir("resume_ref" + std::to_string(n)),
+               cut = fresh_dir("resume_cut" + std::to_string(n));
+    ++n;
+    ASSERT_EQ(movie(args + " --out " + ref.string()).exit_code, 0);
+    test::kill_and_resume("movie", args, cut, "movie.checkpoint.bin", 2, 600, random);
+    ASSERT_EQ(names_in(cut), (std::vector<std::string>{"frames", "movie.mp4", "movie.toml"}))
+        << "a finished movie keeps no checkpoint or parts";
+    const auto frames = names_in(ref / "frames");
+    ASSERT_EQ(names_in(cut / "frames"), frames);
+    for (const auto& f : frames)
+      EXPECT_TRUE(test::read_file(ref / "frames" / f) == test::read_file(cut / "frames" / f))
+          << f << " differs";
+    const int count = static_cast<int>(frames.size());
+    for (int k : {0, count / 2, count - 1}) {
+      const Decoded a = decode_movie(ref / "movie.mp4", k), b = decode_movie(cut / "movie.mp4", k);
+      ASSERT_EQ(b.frames, count);
+      EXPECT_NEAR(b.duration, a.duration, 1e-3);
+      EXPECT_EQ(av_cmp_q(b.avg_frame_rate, a.avg_frame_rate), 0);
+      // Both are within about 35 dB of the same picture (see test_movie.cpp): 30 dB between
+      // them is the bound for "the same frame".
+      EXPECT_GE(psnr(a.rgb, b.rgb, a.width, a.height), 30) << "frame " << k;
+    }
+  }
+}
+
+// resume refuses, in one line and touching nothing: a finished movie, a checkpoint of another
+// movie.toml, a corrupt checkpoint, and a movie of stored snapshots.
+TEST(MovieCommand, ResumeRefusesWhatItCannotGoOnFrom) {
+  const auto dir = fresh_dir("resume_bad");
+  ASSERT_EQ(movie(std::string(kSmallRun) + " --frames 10 --out " + dir.string()).exit_code, 0);
+  auto expect_refused = [&](const std::string& what, const std::string& says) {
+    SCOPED_TRACE(what);
+    const auto before = names_in(dir);
+    const Result r = test::grainshock("resume " + dir.string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err_lines(), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_EQ(names_in(dir), before);
+  };
+  expect_refused("finished", "finished movie");
+  std::ofstream(dir / "movie.checkpoint.bin") << "not a checkpoint";
+  expect_refused("corrupt", "movie.checkpoint.bin");
+
+  // A checkpoint of this movie, then another movie.toml.
+  const auto cut = fresh_dir("resume_other");
+  const std::string args =
+      std::string(kSmallRun) + " --t-max 100000 --frames 20000 --frame-spacing lin";
+  const pid_t pid = test::spawn_grainshock("movie " + args + " --out " + cut.string());
+  while (!fs::exists(cut / "movie.checkpoint.bin"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  std::string other_toml = test::read_file(cut / "movie.toml");
+  const auto at = other_toml.find("seed = 7");
+  ASSERT_NE(at, std::string::npos);
+  other_toml.replace(at, 8, "seed = 8");
+  std::ofstream(cut / "movie.toml") << other_toml;
+  const auto before = names_in(cut);
+  const Result other = test::grainshock("resume " + cut.string());
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_EQ(other.err_lines(), 1) << other.err;
+  EXPECT_NE(other.err.find("another movie"), std::string::npos) << other.err;
+  EXPECT_EQ(names_in(cut), before);
+
+  const auto stored = fresh_dir("resume_stored");
+  const auto files = stored_snapshots("resume_stored_run", "--particles 3000 --t-max 200");
+  ASSERT_EQ(movie(files[0] + " " + files[1] + " --quiet --out " + stored.string()).exit_code, 0);
+  const Result s = test::grainshock("resume " + stored.string());
+  EXPECT_EQ(s.exit_code, 1);
+  EXPECT_NE(s.err.find("stored snapshots"), std::string::npos) << s.err;
 }
 
 }  // namespace
