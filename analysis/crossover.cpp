@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "sim/error.h"
@@ -41,6 +42,22 @@ std::string three_digits(double x) {
 double interpolate(std::span<const double> t, std::size_t a, std::size_t b, double da, double db) {
   const double f = da / (da - db);
   return std::exp(std::log(t[a]) + f * (std::log(t[b]) - std::log(t[a])));
+}
+
+// Calls f(mean) for the mean of each of `resamples` draws of realisations with replacement
+// (gs::Rng, Stream::Bootstrap, keyed by seed and key).
+template <class F>
+void for_each_resampled_mean(std::size_t n, std::span<const std::vector<double>> curves,
+                             int resamples, std::uint64_t seed, std::uint64_t key, F f) {
+  Rng rng(seed, key, Stream::Bootstrap);
+  std::vector<std::size_t> draw(curves.size());
+  for (int b = 0; b < resamples; ++b) {
+    for (auto& x : draw) x = std::size_t(rng.below(curves.size()));
+    std::vector<double> mean(n, 0.0);
+    for (std::size_t k : draw)
+      for (std::size_t i = 0; i < n; ++i) mean[i] += curves[k][i] / double(draw.size());
+    f(std::as_const(mean));
+  }
 }
 
 }  // namespace
@@ -118,17 +135,11 @@ CrossoverDraws crossover_draws(std::span<const double> t,
   CrossoverDraws out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (curves.size() < 2) return out;
-  Rng rng(seed, key, Stream::Bootstrap);
-  std::vector<std::size_t> draw(curves.size());
-  for (int b = 0; b < resamples; ++b) {
-    for (auto& x : draw) x = std::size_t(rng.below(curves.size()));
-    std::vector<double> mean(t.size(), 0.0);
-    for (std::size_t k : draw)
-      for (std::size_t i = 0; i < t.size(); ++i) mean[i] += curves[k][i] / double(draw.size());
+  for_each_resampled_mean(t.size(), curves, resamples, seed, key, [&](const auto& mean) {
     const CrossoverPair c = crossover_pair(t, mean, o);
     out.enter.push_back(c.enter.found ? c.enter.time : nan);
     out.leave.push_back(c.leave.found ? c.leave.time : nan);
-  }
+  });
   return out;
 }
 
@@ -136,6 +147,53 @@ double crossover_intersection(const PowerLawFit& early, const PowerLawFit& late)
   const double db = early.exponent - late.exponent;
   if (!(std::fabs(db) > 0)) return std::numeric_limits<double>::quiet_NaN();
   return std::exp((std::log(late.prefactor) - std::log(early.prefactor)) / db);
+}
+
+Crossover crossover_energy(const PowerLawFit& energy, double e0, double last_time,
+                           const std::string& energy_note) {
+  if (!(e0 > 0)) throw UserError("crossover: the initial energy must be positive");
+  Crossover c;
+  if (!std::isfinite(energy.exponent)) {
+    c.note = "no power law of E_t to meet E_0 (" + energy_note + ")";
+    return c;
+  }
+  if (!(energy.exponent < 0)) {
+    c.note = "E_t's plateau exponent " + three_digits(energy.exponent) +
+             " is not negative: no dissipating regime";
+    return c;
+  }
+  if (energy.window.t_hi < last_time * std::pow(10.0, -0.1)) {
+    c.note = "E_t's plateau [" + format_number(energy.window.t_lo) + ", " +
+             format_number(energy.window.t_hi) + "] (slope " + three_digits(energy.exponent) +
+             ") ends before the run (t = " + format_number(last_time) +
+             "): the slope drifts on, the scaling regime is not reached";
+    return c;
+  }
+  PowerLawFit elastic;
+  elastic.exponent = 0;
+  elastic.prefactor = e0;
+  c.time = crossover_intersection(elastic, energy);
+  c.found = std::isfinite(c.time) && c.time > 0;
+  if (!c.found) c.note = "E_t's power law does not meet E_0";
+  return c;
+}
+
+std::vector<double> crossover_energy_draws(std::span<const double> t,
+                                           std::span<const std::vector<double>> curves,
+                                           const Window& window, double e0, int resamples,
+                                           std::uint64_t seed, std::uint64_t key) {
+  std::vector<double> out;
+  if (curves.size() < 2) return out;
+  for_each_resampled_mean(t.size(), curves, resamples, seed, key, [&](const auto& mean) {
+    double time = std::numeric_limits<double>::quiet_NaN();
+    try {
+      const Crossover c = crossover_energy(fit_power_law(t, mean, window), e0, t.back(), "");
+      if (c.found) time = c.time;
+    } catch (const UserError&) {  // a draw with a non-positive mean in the window: no time
+    }
+    out.push_back(time);
+  });
+  return out;
 }
 
 CrossoverExponent fit_crossover_exponent(std::span<const double> control,

@@ -198,14 +198,26 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
   co.t_lo = t_start;
   const auto& n = ts.column("active");
   const CrossoverPair tc = crossover_pair(t, n, co);
-  f.tc1 = tc.enter;
+  f.tc1_slope = tc.enter;
   f.tc2 = tc.leave;
   // The same rules on resampled ensembles (realisations drawn with replacement).
   {
     const CrossoverDraws draws =
         crossover_draws(t, curves_of(sums, 0), co, o.band_resamples, spec.physics.seed, 200);
-    f.tc1_draws = draws.enter;
+    f.tc1_slope_draws = draws.enter;
     f.tc2_draws = draws.leave;
+  }
+  if (elastic) {
+    f.tc1.note = "r = 1 has no inelastic regime";
+  } else {
+    // The kick's energy (unit masses), all the blast has before its first collision.
+    const double e0 = 0.5 * spec.physics.speed * spec.physics.speed;
+    const ExponentFit* energy = find_exponent(f, "E_t");
+    GS_CHECK(energy != nullptr);
+    f.tc1 = crossover_energy(energy->fit, e0, t.back(), energy->note);
+    if (f.tc1.found)
+      f.tc1_draws = crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0,
+                                           o.band_resamples, spec.physics.seed, 201);
   }
 
   const auto& an = ts.column("anisotropy");

@@ -9,10 +9,11 @@
 //    realisations (M >= 2), or "no plateau within the run" and no fit;
 //  - v_t is not fitted: v_rms^2 = 2 E_t / N_t holds exactly (every moving particle is active), so
 //    its exponent repeats those of E_t and N_t; the identity is checked instead;
-//  - t_c1: the time from which the local slope of <N_t> stays at or below the upper edge of a
-//    10% band around alpha d (up to t_c2; analysis/crossover.h, slope rule); t_c2: the time from
-//    which it stays above that band, if the data reach it; each with bootstrap draws for the
-//    intervals of phi1, phi2;
+//  - t_c1 (r < 1): where the plateau fit of <E_t> meets E_0, the elastic regime's conserved
+//    energy (analysis/crossover.h, intersection rule); beside it the slope rule's t_c1, the time
+//    from which the local slope of <N_t> stays at or below the upper edge of a 10% band around
+//    alpha d (up to t_c2); t_c2: the time from which that slope stays above the band, if the
+//    data reach it; each with bootstrap draws for the intervals of phi1, phi2;
 //  - collapse quality Q (analysis/collapse.h) of t^alpha P(R,t) against R t^-alpha and of
 //    t^(alpha-1) P(v,t) against v t^(1-alpha) over the snapshot times;
 //  - A(t) at the last sample and the band measures at the last snapshot time.
@@ -59,9 +60,9 @@ struct EnsembleFits {
   std::vector<ExponentFit> exponents;
   // Largest |v_rms^2 N_t / (2 E_t) - 1| over realisations and samples with N_t >= 20.
   double speed_identity_error = std::numeric_limits<double>::quiet_NaN();
-  Crossover tc1, tc2;
-  // t_c1 and t_c2 of resampled ensembles (NaN where a draw does not find one), for intervals.
-  std::vector<double> tc1_draws, tc2_draws;
+  Crossover tc1, tc1_slope, tc2;  // tc1: intersection rule; tc1_slope: slope rule on N_t
+  // The same of resampled ensembles (NaN where a draw does not find one), for intervals.
+  std::vector<double> tc1_draws, tc1_slope_draws, tc2_draws;
   double collapse_radius = std::numeric_limits<double>::quiet_NaN();
   double collapse_speed = std::numeric_limits<double>::quiet_NaN();
   std::string collapse_note;

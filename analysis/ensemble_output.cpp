@@ -211,12 +211,16 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  \"v_t\": {\"identity\": \"v_rms^2 = 2 E_t / N_t\", \"max_relative_deviation\": "
     << json_number(f.speed_identity_error) << "},\n";
   j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
+  j << "  \"t_c1_slope_rule\": " << crossover_json(f.tc1_slope) << ",\n";
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
   j << "  \"crossover_definition\": "
     << json_string(
-           "slope rule on <N_t>: t_c2 = time from which the local slope stays above a 10% "
-           "band around alpha d (towards the elastic regime); t_c1 = time from which it stays "
-           "at or below that band's upper edge, up to t_c2 where the run reaches it")
+           "t_c1 (intersection rule, r < 1) = (a / E_0)^(1/b), where the power law a t^-b "
+           "fitted to <E_t> on the plateau of its local slope meets the kick's energy E_0 (the "
+           "elastic regime conserves it); t_c1_slope_rule = time from which the local slope of "
+           "<N_t> stays at or below the upper edge of a 10% band around alpha d, up to t_c2 "
+           "where the run reaches it; t_c2 = time from which that slope stays above the band "
+           "(towards the elastic regime)")
     << ",\n";
   j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
   j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";

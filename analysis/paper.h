@@ -59,7 +59,8 @@ struct CrossoverExponentFit {
 };
 CrossoverExponentFit fit_crossover_points(const std::vector<CrossoverPoint>& points);
 
-Comparison phi1_comparison(int d, const CrossoverExponentFit& fit);
+// slope_rule: the fit of the slope rule's t_c1 on N_t, reported beside the intersection rule's.
+Comparison phi1_comparison(int d, const CrossoverExponentFit& fit, bool slope_rule);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
 std::string comparisons_json(const std::vector<Comparison>& cmp);

@@ -156,9 +156,9 @@ void run(const FiguresOptions& o) {
   const double sim_wall = since(t0);
 
   const Crossovers x = crossovers_of(results);
-  for (std::size_t k = 0; k < x.tc1.size(); ++k)
-    cmp.push_back(phi1_comparison(x.tc1[k].first, x.phi1[k]));
-  cmp.push_back(phi2_comparison(x.tc2.front().first, 0.1, x.phi2.front()));
+  for (const auto& set : x.tc1) cmp.push_back(phi1_comparison(set.d, set.fit, false));
+  for (const auto& set : x.tc1_slope) cmp.push_back(phi1_comparison(set.d, set.fit, true));
+  cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, formats);
   const FiguresRun run{mode, o.seed, o.threads, since(t0), sim_wall};
   write_figures_summary(dir, run, results, cmp, problems);

@@ -318,21 +318,21 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
 }
 
 // Crossover times against their control parameter with the fitted line, its exponent and
-// interval in the key.
+// interval in the key; one set of points per CrossoverSet (a rule in one dimension), the sets
+// after the first of each dimension drawn open.
 struct CrossoverPlot {
   std::string base, title, xlabel, ylabel, name;  // name: φ_1 or φ_2
 };
 
-std::string fig_crossover_points(
-    const Out& out, const CrossoverPlot& cp,
-    const std::vector<std::pair<int, std::vector<CrossoverPoint>>>& sets,
-    const std::vector<CrossoverExponentFit>& fits) {
+std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
+                                 const std::vector<CrossoverSet>& sets) {
   Table t;
-  for (const char* n : {"d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+  for (const char* n : {"set", "d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
   std::string plot, functions;
   for (std::size_t k = 0; k < sets.size(); ++k) {
-    const int d = sets[k].first;
-    for (const auto& p : sets[k].second) {
+    const CrossoverSet& set = sets[k];
+    const int d = set.d;
+    for (const auto& p : set.points) {
       if (!p.crossover.found) continue;
       std::vector<double> ok;
       for (double x : p.draws)
@@ -341,24 +341,30 @@ std::string fig_crossover_points(
       const double nan = std::numeric_limits<double>::quiet_NaN();
       const double lo = ok.size() >= 10 ? sorted_quantile(ok, 0.025) : nan;
       const double hi = ok.size() >= 10 ? sorted_quantile(ok, 0.975) : nan;
-      const std::vector<double> row = {double(d), p.control, p.crossover.time, lo, hi};
+      const std::vector<double> row = {double(k), double(d), p.control, p.crossover.time, lo, hi};
       t.add_row(row);
     }
-    const std::string ds = std::to_string(d);
+    const std::string ks = std::to_string(k), ds = std::to_string(d);
+    const std::string title = "d = " + ds + (set.rule.empty() ? "" : ", " + set.rule);
     plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
-            ".csv' skip 1 using ($1==" + ds +
-            " ? $2 : 1/0):3:4:5 with yerrorbars pt 7 ps 1.5 title 'd = " + ds + "'";
-    const auto& f = fits[k];
+            ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " +
+            (set.open ? "6" : "7") + " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") +
+            "' title '" + title + "'";
+    const auto& f = set.fit;
     if (std::isfinite(f.fit.phi)) {
       char buf[200];
-      std::snprintf(buf, sizeof buf, "T%d(x) = %.6g*x**(-%.6g)\n", d, f.fit.prefactor, f.fit.phi);
+      std::snprintf(buf, sizeof buf, "T%zu(x) = %.6g*x**(-%.6g)\n", k, f.fit.prefactor, f.fit.phi);
       functions += buf;
       const std::string interval =
           std::isfinite(f.ci_lo)
               ? " [" + figure_number(f.ci_lo, 3) + ", " + figure_number(f.ci_hi, 3) + "]"
               : " ± " + figure_number(f.fit.standard_error, 2);
-      plot += ", \\\n     T" + ds + "(x) with lines " + theory_style(d) + " title 'd = " + ds +
-              " fit: " + cp.name + " = " + figure_number(f.fit.phi, 3) + interval + "'";
+      const std::string line =
+          set.open ? std::string("lw 1 dt 3 lc rgb '") + (d == 2 ? "black" : "#a00000") + "'"
+                   : theory_style(d);
+      plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title + " fit: " +
+              cp.name + " = " +
+              figure_number(f.fit.phi, 3) + interval + "'";
     }
   }
   write_csv(t, out.dir / (cp.base + ".csv"));
@@ -367,7 +373,8 @@ std::string fig_crossover_points(
     return out.plot(cp.base + ".gp",
                     gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
   gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
-        "'\nset ylabel '" + cp.ylabel + "'\nset key top right\n" + "plot " + plot + "\n";
+        "'\nset ylabel '" + cp.ylabel + "'\nset key top right font ',10'\n" + "plot " + plot +
+        "\n";
   return out.plot(cp.base + ".gp", gp);
 }
 
@@ -427,22 +434,28 @@ std::string slope_figure_of(const FigureCase& c) {
 Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
-    std::vector<CrossoverPoint> points;
+    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false};
+    CrossoverSet slope{d, "slope rule (N_t), previous", {}, {}, true};
     for (const CaseResult* c : cases_of(results, d, false)) {
       const double r = c->plan->spec.physics.restitution;
-      points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
+      energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
+      slope.points.push_back(
+          {1 - r * r, "r = " + rtext(r), c->fits.tc1_slope, c->fits.tc1_slope_draws});
     }
-    x.phi1.push_back(fit_crossover_points(points));
-    x.tc1.emplace_back(d, std::move(points));
+    energy.fit = fit_crossover_points(energy.points);
+    slope.fit = fit_crossover_points(slope.points);
+    x.tc1.push_back(std::move(energy));
+    x.tc1_slope.push_back(std::move(slope));
   }
-  std::vector<CrossoverPoint> scan;
+  CrossoverSet scan{2, "", {}, {}, false};
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;
-    scan.push_back({delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
+    scan.points.push_back(
+        {delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
   }
-  x.phi2.push_back(fit_crossover_points(scan));
-  x.tc2.emplace_back(2, std::move(scan));
+  scan.fit = fit_crossover_points(scan.points);
+  x.tc2.push_back(std::move(scan));
   return x;
 }
 
@@ -466,18 +479,20 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
     if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
   }
   check(fig_packing(results, out));
+  std::vector<CrossoverSet> tc1 = crossovers.tc1;
+  tc1.insert(tc1.end(), crossovers.tc1_slope.begin(), crossovers.tc1_slope.end());
   check(fig_crossover_points(
       out,
       {"fig6_crossover",
        "Crossover time t_{c1} against 1 - r^2 (paper: φ_1 = 2.25 in 2D, 3.0 in 3D)", "1 - r^2",
        "t_{c1} (simulation units)", "φ_1"},
-      crossovers.tc1, crossovers.phi1));
+      tc1));
   check(fig_crossover_points(
       out,
       {"fig7_tc2_delta",
        "Crossover time t_{c2} against the cutoff δ (2D, r = 0.1; paper: φ_2 = 3/2)", "δ",
        "t_{c2} (simulation units)", "φ_2"},
-      crossovers.tc2, crossovers.phi2));
+      crossovers.tc2));
   return problems;
 }
 

@@ -4,7 +4,6 @@
 // crossover points of the phi1 and phi2 fits, which figs. 6 and 7 and the report share.
 #include <filesystem>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "analysis/ensemble_output.h"
@@ -21,11 +20,20 @@ struct CaseResult {
   double wall = 0;  // seconds
 };
 
-// t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1), and t_c2 against the cutoff
-// delta (phi2, from the 2D r = 0.1 scan). One fit per set.
+// The crossover times of one rule in one dimension and their phi fit.
+struct CrossoverSet {
+  int d = 2;
+  std::string rule;  // in the figure's key; empty for the only rule
+  std::vector<CrossoverPoint> points;
+  CrossoverExponentFit fit;
+  bool open = false;  // drawn with open symbols: a reading beside the reported one
+};
+
+// t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1) by the intersection rule and,
+// beside it, by the slope rule on N_t; t_c2 against the cutoff delta (phi2, from the 2D r = 0.1
+// scan).
 struct Crossovers {
-  std::vector<std::pair<int, std::vector<CrossoverPoint>>> tc1, tc2;
-  std::vector<CrossoverExponentFit> phi1, phi2;
+  std::vector<CrossoverSet> tc1, tc1_slope, tc2;
 };
 Crossovers crossovers_of(const std::vector<CaseResult>& results);
 

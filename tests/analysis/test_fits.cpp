@@ -234,6 +234,55 @@ TEST(Crossover, BelowTheBandIsNeitherTc2NorALaterTc1) {
   EXPECT_FALSE(q.leave.found);
 }
 
+// E_t of a run with restitution r: E_0 while collisions conserve energy, then the inelastic
+// E_0 (t / tc)^-b (2D: b = 2/3); the intersection of the two asymptotes is tc exactly.
+double energy_curve(double t, double tc, double b) {
+  return 0.5 * std::pow(1 + t / tc, -b);
+}
+
+TEST(Crossover, EnergyIntersectionRecoversTc1AndPhi1) {
+  const double phi1 = 2.25, b = 2.0 / 3.0;
+  const auto t = log_grid(1e-3, 1e9, 40);
+  std::vector<double> control, tc1;
+  for (double r : {0.1, 0.3, 0.5, 0.7, 0.8, 0.9}) {
+    const double tc = 3 * std::pow(1 - r * r, -phi1);
+    std::vector<double> y;
+    for (double ti : t) y.push_back(energy_curve(ti, tc, b));
+    const PowerLawFit late = fit_power_law(t, y, {100 * tc, t.back()});
+    const Crossover c = crossover_energy(late, 0.5, t.back(), "");
+    ASSERT_TRUE(c.found) << c.note;
+    // The correction b tc / t left in the window tilts the fit: computed, t_c1 / tc = 0.9966 at
+    // tc = 3 and 0.9948 at tc = 300 for a window from 100 tc to 1e9; tolerance 1%.
+    EXPECT_NEAR(c.time / tc, 1.0, 0.01);
+    control.push_back(1 - r * r);
+    tc1.push_back(c.time);
+  }
+  // That bias changes by 2e-3 in ln t_c1 over the factor 41 in tc (ln 5.2 = 1.65 in ln(1 - r^2)),
+  // moving phi1 by ~1e-3; tolerance 3e-3.
+  EXPECT_NEAR(fit_crossover_exponent(control, tc1).phi, phi1, 3e-3);
+}
+
+TEST(Crossover, EnergyIntersectionNeedsASettledDissipatingPlateau) {
+  const auto t = log_grid(1e-3, 1e6, 40);
+  std::vector<double> y;
+  for (double ti : t) y.push_back(energy_curve(ti, 10, 0.75));
+  PowerLawFit fit = fit_power_law(t, y, {1e3, 1e6});
+  EXPECT_TRUE(crossover_energy(fit, 0.5, t.back(), "").found);
+  // A plateau the slope leaves again (ending a decade before the run) is a transient.
+  const Crossover early = crossover_energy(fit_power_law(t, y, {1e3, 1e5}), 0.5, t.back(), "");
+  EXPECT_FALSE(early.found);
+  EXPECT_NE(early.note.find("ends before the run"), std::string::npos) << early.note;
+  // Within the slope's smoothing half width (0.1 decade) of the end, it is the late plateau.
+  EXPECT_TRUE(crossover_energy(fit_power_law(t, y, {1e3, 0.85e6}), 0.5, t.back(), "").found);
+  // No fit, or a fit that does not dissipate: no crossover, and the note says why.
+  const Crossover none = crossover_energy(PowerLawFit{}, 0.5, t.back(), "no plateau within the run");
+  EXPECT_FALSE(none.found);
+  EXPECT_NE(none.note.find("no plateau within the run"), std::string::npos) << none.note;
+  fit.exponent = 0.1;
+  EXPECT_FALSE(crossover_energy(fit, 0.5, t.back(), "").found);
+  EXPECT_THROW(crossover_energy(fit, 0, t.back(), ""), UserError);
+}
+
 // P(R,t) = t^-alpha f(R t^-alpha) tabulated as a histogram at time t.
 Histogram radial_at(double time, double alpha, int bins) {
   const double s = std::pow(time, alpha);
