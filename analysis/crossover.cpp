@@ -163,8 +163,8 @@ Crossover crossover_energy(const PowerLawFit& energy, double e0, double last_tim
     return c;
   }
   if (energy.window.t_hi < last_time * std::pow(10.0, -0.1)) {
-    c.note = "E_t's plateau [" + format_number(energy.window.t_lo) + ", " +
-             format_number(energy.window.t_hi) + "] (slope " + three_digits(energy.exponent) +
+    c.note = "E_t's plateau [" + three_digits(energy.window.t_lo) + ", " +
+             three_digits(energy.window.t_hi) + "] (slope " + three_digits(energy.exponent) +
              ") ends before the run (t = " + format_number(last_time) +
              "): the slope drifts on, the scaling regime is not reached";
     return c;

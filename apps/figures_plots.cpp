@@ -373,7 +373,7 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
     return out.plot(cp.base + ".gp",
                     gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
   gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
-        "'\nset ylabel '" + cp.ylabel + "'\nset key top right font ',10'\n" + "plot " + plot +
+        "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " + plot +
         "\n";
   return out.plot(cp.base + ".gp", gp);
 }
