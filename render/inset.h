@@ -3,6 +3,8 @@
 // (scaled) speed against distance from their centre of mass, from sim/observables' radial
 // profile. Computed from every active particle, so a 3D slab picture shows the whole shell's
 // profile.
+#include <Eigen/Core>
+#include <span>
 #include <vector>
 
 #include "sim/snapshot.h"
@@ -17,9 +19,12 @@ struct InsetData {
   bool scaled = false;          // speed is over v_rms
 };
 
-// `band`: the active particles alone (sim/observables' active_subset, or the copy build_scene
-// makes as it draws them), with velocities. Empty (no shells) when it holds none. v_rms > 0
-// scales the speeds.
+// From the active particles' positions and speeds (over v_rms when `scaled`), as build_scene
+// copies them while it draws them. Empty (no shells) without particles.
+InsetData inset_profile(int dim, std::span<const Eigen::Vector3d> positions,
+                        std::span<const double> speeds, bool scaled, int bins = 40);
+// `band`: the active particles alone (sim/observables' active_subset), with velocities; v_rms > 0
+// scales the speeds, dividing each as render/field.h's scaled speed does.
 InsetData inset_profile(const Snapshot& band, double v_rms, int bins = 40);
 
 }  // namespace gs::render

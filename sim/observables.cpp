@@ -251,6 +251,23 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   return out;
 }
 
+namespace {
+
+// Density and mean speed per shell from the shells, counts and speed sums of `p`.
+void shell_means(RadialProfile& p, int d) {
+  const std::size_t n = p.count.size();
+  p.density.resize(n);
+  p.mean_speed.resize(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    const double shell = ball_volume(d, p.edges[b + 1]) - ball_volume(d, p.edges[b]);
+    p.density[b] = double(p.count[b]) / shell;
+    p.mean_speed[b] =
+        p.count[b] ? p.speed_sum[b] / double(p.count[b]) : std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+}  // namespace
+
 RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   const int d = checked_dim(s);
   require_velocities(s);
@@ -289,18 +306,38 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
     if (ri > 0) radial[b] += (v - centre_velocity).dot(x) / ri;
   }
   p.count = std::move(count);
-  p.density.resize(n);
-  p.mean_speed.resize(n);
+  p.speed_sum = std::move(speed);
+  shell_means(p, d);
   p.mean_radial_velocity.resize(n);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  p.speed_sum = speed;
-  p.radial_velocity_sum = radial;
-  for (std::size_t b = 0; b < n; ++b) {
-    const double shell = ball_volume(d, p.edges[b + 1]) - ball_volume(d, p.edges[b]);
-    p.density[b] = double(p.count[b]) / shell;
-    p.mean_speed[b] = p.count[b] ? speed[b] / double(p.count[b]) : nan;
-    p.mean_radial_velocity[b] = p.count[b] ? radial[b] / double(p.count[b]) : nan;
+  for (std::size_t b = 0; b < n; ++b)
+    p.mean_radial_velocity[b] =
+        p.count[b] ? radial[b] / double(p.count[b]) : std::numeric_limits<double>::quiet_NaN();
+  p.radial_velocity_sum = std::move(radial);
+  return p;
+}
+
+RadialProfile speed_profile(int d, std::span<const Eigen::Vector3d> positions,
+                            std::span<const double> speeds, const Binning& binning) {
+  GS_CHECK(positions.size() == speeds.size() && d >= 1 && d <= 3);
+  // In the order radial_profile takes them, so that the sums are the same bits.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& x : positions) centre += project(x, d);
+  if (!positions.empty()) centre /= double(positions.size());
+  std::vector<double> r(positions.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = (project(positions[i], d) - centre).norm();
+  RadialProfile p;
+  p.edges = histogram_edges(r, binning);
+  const std::size_t n = p.edges.size() - 1;
+  p.count.assign(n, 0);
+  p.speed_sum.assign(n, 0.0);
+  const double lo = p.edges.front(), hi = p.edges.back();
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (!(r[i] >= lo && r[i] <= hi)) continue;
+    const std::size_t b = bin_of(p.edges, r[i]);
+    ++p.count[b];
+    p.speed_sum[b] += speeds[i];
   }
+  shell_means(p, d);
   return p;
 }
 

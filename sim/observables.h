@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "sim/histogram.h"
@@ -106,6 +107,12 @@ struct RadialProfile {
   std::vector<double> speed_sum, radial_velocity_sum;
 };
 RadialProfile radial_profile(const Snapshot& s, const Binning& binning = {});
+// The shells, counts, density and mean speed of the profile above from the active particles'
+// positions and their speeds alone (speeds[i] belongs to positions[i], in any unit; no radial
+// velocity): what a movie's inset needs every frame, from the speeds the renderer has already
+// read. The same bits as the profile of a snapshot of these particles.
+RadialProfile speed_profile(int dim, std::span<const Eigen::Vector3d> positions,
+                            std::span<const double> speeds, const Binning& binning = {});
 
 // "Faster particles on the inner edge of the band" as numbers.
 struct InnerEdge {

@@ -325,6 +325,32 @@ TEST(Observables, RadialProfileAndFastInnerEdge) {
   EXPECT_NEAR(f.ratio, 0.5, 1e-12);
 }
 
+// The profile from positions and speeds alone (a movie's inset) is radial_profile's, bit for
+// bit, on an irregular band with particles at rest left out.
+TEST(Observables, SpeedProfileIsTheRadialProfileOfTheActiveParticles) {
+  Snapshot s = make_snapshot(2);
+  std::vector<Eigen::Vector3d> x;
+  std::vector<double> v;
+  for (int i = 0; i < 500; ++i) {
+    const double a = 0.37 * i, R = 30 + 7 * std::sin(1.3 * i);
+    const Eigen::Vector3d u(std::cos(a), std::sin(a), 0), vel = (0.5 + 0.3 * std::cos(i)) * u;
+    const bool active = i % 5 != 0;
+    add(s, Eigen::Vector3d(50, 50, 0) + R * u, active ? vel : Eigen::Vector3d::Zero(), active);
+    if (active) x.push_back(s.position.back()), v.push_back(vel.norm());
+  }
+  const Binning b{.bins = 17};
+  const RadialProfile p = radial_profile(s, b), q = speed_profile(2, x, v, b);
+  EXPECT_EQ(q.edges, p.edges);
+  EXPECT_EQ(q.count, p.count);
+  EXPECT_EQ(q.density, p.density);
+  ASSERT_EQ(q.mean_speed.size(), p.mean_speed.size());
+  for (std::size_t k = 0; k < p.mean_speed.size(); ++k)
+    if (p.count[k]) {
+      EXPECT_EQ(q.mean_speed[k], p.mean_speed[k]) << k;
+    }
+  EXPECT_TRUE(q.mean_radial_velocity.empty());
+}
+
 TEST(Observables, RejectsBadSnapshots) {
   Snapshot s = make_snapshot(4);
   add(s, Eigen::Vector3d::Zero());
