@@ -72,8 +72,6 @@ void sync_file(const fs::path& p) {
     throw UserError("movie '" + p.string() + "': cannot sync to disk: " + std::strerror(err));
 }
 
-}  // namespace
-
 // How long before its first frame is shown a part starts decoding, in its time base: a part
 // long enough for B-frames does (its first decode times are negative), a short one does not.
 std::int64_t decode_lead(Input& in, const fs::path& part) {
@@ -83,6 +81,8 @@ std::int64_t decode_lead(Input& in, const fs::path& part) {
   const std::int64_t dts = pkt.p->dts;
   return dts == AV_NOPTS_VALUE ? 0 : std::max<std::int64_t>(0, -dts);
 }
+
+}  // namespace
 
 void join_movies(const std::vector<fs::path>& parts, const fs::path& out) {
   GS_CHECK(!parts.empty());
