@@ -503,6 +503,13 @@ TEST(MovieCommand, ResumeRefusesWhatItCannotGoOnFrom) {
     EXPECT_EQ(names_in(dir), before);
   };
   expect_refused("finished", "finished movie");
+  // A kill after the checkpoints were removed but before the parts were: a finished movie.
+  fs::create_directories(dir / "movie.parts");
+  std::ofstream(dir / "movie.parts" / "part_0000.mp4") << "left by a kill";
+  const Result leftover = test::grainshock("resume --quiet " + dir.string());
+  EXPECT_EQ(leftover.exit_code, 0) << leftover.err;
+  EXPECT_FALSE(fs::exists(dir / "movie.parts"));
+  expect_refused("finished again", "finished movie");
   std::ofstream(dir / "movie.checkpoint.bin") << "not a checkpoint";
   expect_refused("corrupt", "movie.checkpoint.bin");
 
