@@ -4,7 +4,6 @@
 // time into DIR/movie.mp4 (see apps/front_movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +15,6 @@
 #include "apps/commands.h"
 #include "apps/exit_code.h"
 #include "apps/front_movie.h"
-#include "render/movie_parts.h"
 #include "sim/config.h"
 #include "sim/error.h"
 #include "sim/stop.h"
@@ -205,21 +203,6 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
   job.movie.quiet = quiet;
   lock_output_dir(dir);
   remove_leftovers(dir);
-  if (!std::filesystem::exists(movie_checkpoint_path(dir)) &&
-      !std::filesystem::exists(previous_movie_checkpoint_path(dir)) &&
-      std::filesystem::exists(dir / "movie.mp4")) {
-    // A finished movie removes its checkpoints, then its parts: a kill in between leaves a
-    // finished movie whose parts only need removing.
-    const auto parts = render::MovieParts::folder(dir / "movie.mp4");
-    if (!std::filesystem::exists(parts))
-      throw UserError("'" + dir.string() +
-                      "' holds a finished movie (movie.mp4): nothing to resume");
-    std::filesystem::remove_all(parts);
-    if (!quiet)
-      std::fprintf(stderr, "grainshock: %s had finished; its leftover parts are removed\n",
-                   dir.c_str());
-    return kExitSuccess;
-  }
   const MovieCheckpoints checkpoints{text.str(), checkpoint_every};
   const FrontMovieResult r = resume_front_movie(job.physics, job.movie, dir, checkpoints);
   return r.stopped ? kExitInterrupted : kExitSuccess;

@@ -559,6 +559,12 @@ namespace {
 
 enum Pass : std::uint32_t { kRangePass = 1, kMoviePass = 2 };
 
+void remove_movie_checkpoints(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::remove(movie_checkpoint_path(dir), ec);
+  std::filesystem::remove(previous_movie_checkpoint_path(dir), ec);
+}
+
 // A live movie's checkpoints (sim/checkpoint.h): the pass and the frame reached, the colour
 // ranges pass 1 has found, the following camera, the parts of the movie on disk and the engine.
 // Each is written whole, the previous one kept until it is in place.
@@ -598,11 +604,6 @@ class LiveCheckpoints {
     out.commit();
     resumed();
   }
-  void remove() const {
-    std::error_code ec;
-    std::filesystem::remove(movie_checkpoint_path(dir_), ec);
-    std::filesystem::remove(previous_movie_checkpoint_path(dir_), ec);
-  }
 
  private:
   std::filesystem::path dir_;
@@ -638,7 +639,7 @@ Resumed read_live_checkpoint(const std::filesystem::path& dir, const MovieCheckp
                     (dir / "movie.toml").string() + "' describes");
   Resumed r;
   const auto pass = in.value<std::uint32_t>();
-  in.expect(pass == kRangePass || (pass == kMoviePass));
+  in.expect(pass == kRangePass || pass == kMoviePass);
   r.pass = static_cast<Pass>(pass);
   r.next = in.value<std::uint64_t>();
   in.expect(in.value<std::uint64_t>() == frames && r.next <= frames);
@@ -664,6 +665,20 @@ Resumed read_live_checkpoint(const std::filesystem::path& dir, const MovieCheckp
   return r;
 }
 
+// A finished movie joins its parts into movie.mp4, then removes its checkpoints, then its parts:
+// a kill after the join leaves a finished movie whose leftovers only need removing.
+FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet) {
+  remove_movie_checkpoints(dir);
+  std::error_code ec;
+  std::filesystem::remove_all(render::MovieParts::folder(dir / "movie.mp4"), ec);
+  if (!quiet)
+    std::fprintf(stderr,
+                 "grainshock: %s had finished; its leftover checkpoints and parts are "
+                 "removed\n",
+                 dir.c_str());
+  return {0, false};
+}
+
 // Every live movie: the range pass if one is needed, then the movie; with `checkpoints`, in
 // parts and with checkpoints; with `resume` too, from dir's checkpoint on.
 FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
@@ -677,19 +692,19 @@ FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOption
   Pass pass = p.plan.need_range ? kRangePass : kMoviePass;
   Resumed r;
   if (resume) {
+    const auto movie = dir / "movie.mp4";
+    if (std::filesystem::exists(movie) && !std::filesystem::exists(movie_checkpoint_path(dir)) &&
+        !std::filesystem::exists(previous_movie_checkpoint_path(dir))) {
+      if (!std::filesystem::exists(render::MovieParts::folder(movie)))
+        throw UserError("'" + dir.string() +
+                        "' holds a finished movie (movie.mp4): nothing to resume");
+      return remove_leftovers_of_finished(dir, o.quiet);  // killed before its parts went
+    }
     r = read_live_checkpoint(dir, *checkpoints, physics, p.plan, frames.size(),
                              make_follow(physics.dim, p.plan.view, o));
-    const auto movie = dir / "movie.mp4";
-    if (!render::MovieParts::on_disk(movie, r.parts) && std::filesystem::exists(movie)) {
-      // Parts are removed only once the movie is joined: the kill came after that.
-      ck->remove();
-      std::error_code ec;
-      std::filesystem::remove_all(render::MovieParts::folder(movie), ec);
-      if (!o.quiet)
-        std::fprintf(stderr, "grainshock: %s had finished; its leftover checkpoints are removed\n",
-                     dir.c_str());
-      return {r.part_frames, false};
-    }
+    // The parts are removed only once the movie is joined: the kill came after that.
+    if (!render::MovieParts::on_disk(movie, r.parts) && std::filesystem::exists(movie))
+      return remove_leftovers_of_finished(dir, o.quiet);
     pass = r.pass;
     p.scans = std::move(r.scans);
     frames.start_at(std::move(r.sim), r.next);
@@ -723,7 +738,7 @@ FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOption
       render_pass(frames, p, o, pngs, movie, follow, renderer,
                   p.scans.empty() ? "movie" : "pass 2 of 2 (movie)", ck.has_value());
   // The movie is in place; the parts go after the checkpoints, with `movie`.
-  if (ck && !result.stopped) ck->remove();
+  if (ck && !result.stopped) remove_movie_checkpoints(dir);
   return result;
 }
 

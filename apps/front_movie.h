@@ -67,8 +67,10 @@ FrontMovieResult write_front_movie(const PhysicsConfig& physics, const FrontMovi
                                    const MovieCheckpoints* checkpoints = nullptr);
 // Goes on from dir's checkpoint and ends with the movie of the frames an uninterrupted
 // write_front_movie draws (the same PNGs with --keep-frames; the movie's parts are joined
-// without encoding again). UserError, with nothing touched, for a folder without a
-// checkpoint, one refused by sim/checkpoint.h and one of another movie.toml.
+// without encoding again). A movie killed after it was joined is finished: its leftover
+// checkpoints and parts are removed (and the result has no frames). UserError, with nothing
+// touched, for a finished movie, a folder without a checkpoint, one refused by sim/checkpoint.h
+// and one of another movie.toml.
 FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMovieOptions& o,
                                     const std::filesystem::path& dir,
                                     const MovieCheckpoints& checkpoints);
