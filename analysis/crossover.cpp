@@ -181,13 +181,17 @@ Crossover crossover_energy(const PowerLawFit& energy, double e0, double last_tim
 std::vector<double> crossover_energy_draws(std::span<const double> t,
                                            std::span<const std::vector<double>> curves,
                                            const Window& window, double e0, int resamples,
-                                           std::uint64_t seed, std::uint64_t key) {
+                                           std::uint64_t seed, std::uint64_t key,
+                                           double fixed_exponent) {
   std::vector<double> out;
   if (curves.size() < 2) return out;
   for_each_resampled_mean(t.size(), curves, resamples, seed, key, [&](const auto& mean) {
     double time = std::numeric_limits<double>::quiet_NaN();
     try {
-      const Crossover c = crossover_energy(fit_power_law(t, mean, window), e0, t.back(), "");
+      const PowerLawFit fit = std::isfinite(fixed_exponent)
+                                  ? fit_power_law_fixed(t, mean, window, fixed_exponent)
+                                  : fit_power_law(t, mean, window);
+      const Crossover c = crossover_energy(fit, e0, t.back(), "");
       if (c.found) time = c.time;
     } catch (const UserError&) {  // a draw with a non-positive mean in the window: no time
     }

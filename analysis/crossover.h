@@ -9,6 +9,10 @@
 // the plateau of E_t's local slope: t_c1 = (a / E_0)^(1/b). It is the time from which the
 // blast dissipates as the scaling regime does, and needs no early-time plateau, which small r
 // do not have: their E_t is on its scaling slope from the first tens of collisions.
+// The same with b fixed at the theory's asymptotic exponent and only a fitted on that window (the
+// "theory b" reading): a plateau slope shallower than b (the slope still drifting towards it, as
+// in 3D at r >= 0.7) extrapolates back to E_0 differently under the two, and the difference
+// between the phi1 of each is the rule's systematic.
 // t_c1, slope rule on N_t (kept beside it, the previous reading): with s(t) the local log-slope
 // of N_t (power_law.h) and the target its asymptotic value alpha d, the time from which s stays
 // at or below the upper edge of the band target +- `tolerance` (relative) to the end of the
@@ -86,12 +90,13 @@ Crossover crossover_energy(const PowerLawFit& energy, double e0, double last_tim
                            const std::string& energy_note);
 
 // crossover_energy of the mean of realisations drawn with replacement, each fitted over
-// `window`, `resamples` times (gs::Rng, Stream::Bootstrap, keyed by seed and key): NaN where a
-// draw meets none. For the bootstrap interval of phi1.
-std::vector<double> crossover_energy_draws(std::span<const double> t,
-                                           std::span<const std::vector<double>> realisations,
-                                           const Window& window, double e0, int resamples,
-                                           std::uint64_t seed, std::uint64_t key);
+// `window` (its exponent fitted, or fixed at `fixed_exponent` when that is finite: the theory's
+// b, fit_power_law_fixed), `resamples` times (gs::Rng, Stream::Bootstrap, keyed by seed and
+// key): NaN where a draw meets none. For the bootstrap interval of phi1.
+std::vector<double> crossover_energy_draws(
+    std::span<const double> t, std::span<const std::vector<double>> realisations,
+    const Window& window, double e0, int resamples, std::uint64_t seed, std::uint64_t key,
+    double fixed_exponent = std::numeric_limits<double>::quiet_NaN());
 
 // The exponent phi of t_c ~ control^-phi across runs (control = 1 - r^2 for phi1, delta for
 // phi2): minus the least-squares slope of ln t_c against ln control, with its standard error

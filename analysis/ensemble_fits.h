@@ -10,7 +10,8 @@
 //  - v_t is not fitted: v_rms^2 = 2 E_t / N_t holds exactly (every moving particle is active), so
 //    its exponent repeats those of E_t and N_t; the identity is checked instead;
 //  - t_c1 (r < 1): where the plateau fit of <E_t> meets E_0, the elastic regime's conserved
-//    energy (analysis/crossover.h, intersection rule); beside it the slope rule's t_c1, the time
+//    energy (analysis/crossover.h, intersection rule), also with E_t's exponent fixed at the
+//    theory's on the same window (its systematic); beside it the slope rule's t_c1, the time
 //    from which the local slope of <N_t> stays at or below the upper edge of a 10% band around
 //    alpha d (up to t_c2); t_c2: the time from which that slope stays above the band, if the
 //    data reach it; each with bootstrap draws for the intervals of phi1, phi2;
@@ -60,9 +61,11 @@ struct EnsembleFits {
   std::vector<ExponentFit> exponents;
   // Largest |v_rms^2 N_t / (2 E_t) - 1| over realisations and samples with N_t >= 20.
   double speed_identity_error = std::numeric_limits<double>::quiet_NaN();
-  Crossover tc1, tc1_slope, tc2;  // tc1: intersection rule; tc1_slope: slope rule on N_t
+  // tc1: intersection rule; tc1_theory_b: the same with E_t's exponent fixed at the theory's;
+  // tc1_slope: slope rule on N_t.
+  Crossover tc1, tc1_theory_b, tc1_slope, tc2;
   // The same of resampled ensembles (NaN where a draw does not find one), for intervals.
-  std::vector<double> tc1_draws, tc1_slope_draws, tc2_draws;
+  std::vector<double> tc1_draws, tc1_theory_b_draws, tc1_slope_draws, tc2_draws;
   double collapse_radius = std::numeric_limits<double>::quiet_NaN();
   double collapse_speed = std::numeric_limits<double>::quiet_NaN();
   std::string collapse_note;

@@ -211,13 +211,16 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  \"v_t\": {\"identity\": \"v_rms^2 = 2 E_t / N_t\", \"max_relative_deviation\": "
     << json_number(f.speed_identity_error) << "},\n";
   j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
+  j << "  \"t_c1_theory_b\": " << crossover_json(f.tc1_theory_b) << ",\n";
   j << "  \"t_c1_slope_rule\": " << crossover_json(f.tc1_slope) << ",\n";
   j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
   j << "  \"crossover_definition\": "
     << json_string(
            "t_c1 (intersection rule, r < 1) = (a / E_0)^(1/b), where the power law a t^-b "
            "fitted to <E_t> on the plateau of its local slope meets the kick's energy E_0 (the "
-           "elastic regime conserves it); t_c1_slope_rule = time from which the local slope of "
+           "elastic regime conserves it); t_c1_theory_b = the same with b fixed at the "
+           "theory's and a fitted on that plateau; t_c1_slope_rule = time from which the local "
+           "slope of "
            "<N_t> stays at or below the upper edge of a 10% band around alpha d, up to t_c2 "
            "where the run reaches it; t_c2 = time from which that slope stays above the band "
            "(towards the elastic regime)")

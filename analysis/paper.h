@@ -59,8 +59,9 @@ struct CrossoverExponentFit {
 };
 CrossoverExponentFit fit_crossover_points(const std::vector<CrossoverPoint>& points);
 
-// slope_rule: the fit of the slope rule's t_c1 on N_t, reported beside the intersection rule's.
-Comparison phi1_comparison(int d, const CrossoverExponentFit& fit, bool slope_rule);
+// theory_b: the fit of the t_c1 read with E_t's exponent fixed at the theory's, reported beside
+// the intersection rule's (its systematic).
+Comparison phi1_comparison(int d, const CrossoverExponentFit& fit, bool theory_b);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
 std::string comparisons_json(const std::vector<Comparison>& cmp);

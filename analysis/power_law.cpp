@@ -155,9 +155,10 @@ Window auto_window(std::span<const double> t, std::span<const double> y,
 
 namespace {
 
-PowerLawFit fit_range(std::span<const double> t, std::span<const double> y, std::size_t first,
-                      std::size_t last, const Window& w) {
-  std::vector<double> x, z;
+// ln t and ln y over [first, last); UserError naming the window at a y <= 0.
+void log_points(std::span<const double> t, std::span<const double> y, std::size_t first,
+                std::size_t last, const Window& w, std::vector<double>& x,
+                std::vector<double>& z) {
   for (std::size_t i = first; i < last; ++i) {
     if (!(y[i] > 0))
       throw UserError("scaling window " + window_text(w) + ": value " + format_double(y[i]) +
@@ -165,6 +166,12 @@ PowerLawFit fit_range(std::span<const double> t, std::span<const double> y, std:
     x.push_back(std::log(t[i]));
     z.push_back(std::log(y[i]));
   }
+}
+
+PowerLawFit fit_range(std::span<const double> t, std::span<const double> y, std::size_t first,
+                      std::size_t last, const Window& w) {
+  std::vector<double> x, z;
+  log_points(t, y, first, last, w, x, z);
   const Line l = fit_line(x, z);
   PowerLawFit f;
   f.exponent = l.slope;
@@ -182,6 +189,24 @@ PowerLawFit fit_power_law(std::span<const double> t, std::span<const double> y, 
   check_sorted(t);
   const auto [first, last] = window_range(t, w);
   return fit_range(t, y, first, last, w);
+}
+
+PowerLawFit fit_power_law_fixed(std::span<const double> t, std::span<const double> y,
+                                const Window& w, double exponent) {
+  GS_CHECK(t.size() == y.size());
+  GS_CHECK(std::isfinite(exponent));
+  check_sorted(t);
+  const auto [first, last] = window_range(t, w);
+  std::vector<double> x, z;
+  log_points(t, y, first, last, w, x, z);
+  double sum = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) sum += z[i] - exponent * x[i];
+  PowerLawFit f;
+  f.exponent = exponent;
+  f.prefactor = std::exp(sum / double(x.size()));
+  f.points = x.size();
+  f.window = w;
+  return f;
 }
 
 PowerLawFit fit_power_law_bootstrap(std::span<const double> t,

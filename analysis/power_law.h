@@ -63,6 +63,12 @@ Window auto_window(std::span<const double> t, std::span<const double> y,
 PowerLawFit fit_power_law(std::span<const double> t, std::span<const double> y,
                           const Window& window);
 
+// The prefactor of y = prefactor t^exponent with the exponent given (a theory's), by least squares
+// of ln y over `window`: ln prefactor = mean(ln y - exponent ln t). No standard error. The same
+// UserErrors as fit_power_law.
+PowerLawFit fit_power_law_fixed(std::span<const double> t, std::span<const double> y,
+                                const Window& window, double exponent);
+
 struct BootstrapOptions {
   int resamples = 1000;
   double confidence = 0.95;

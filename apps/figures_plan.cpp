@@ -7,62 +7,79 @@
 namespace gs::app {
 namespace {
 
-struct Size {
+// One (d, r) of the plan, sized per mode.
+struct RunSize {
+  double r;
   std::int64_t particles;
-  double t_max[7];                     // per r in kRestitutions
-  std::uint64_t realisations;          // the paper's r < 1
-  std::uint64_t realisations_extra;    // r added for phi1: only t_c1 and exponents are read
-  std::uint64_t realisations_elastic;  // r = 1
+  double t_max;
+  std::uint64_t realisations;
 };
 
-// The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7 and 0.9 added so that phi1 rests on six
-// values of r (issue 21).
-constexpr double kRestitutions[7] = {0.1, 0.3, 0.5, 0.7, 0.8, 0.9, 1.0};
-bool extra(double r) {
-  return r == 0.3 || r == 0.7 || r == 0.9;
-}
-
+// The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7, 0.9 (and 0.85 in 3D) added so that phi1
+// rests on six values of r (issue 21). The paper's r < 1 have the most realisations (Figs. 3-5
+// and the plateau fits), the added r fewer (only t_c1 and exponents are read from them).
+//
 // The largest r run farthest (t_c1 grows as r -> 1) and r = 1 fastest (R ~ t^(2/(d+2))); the
 // times keep the front (where the active density falls to half the ambient) below ~0.7 L/2 and
 // the outermost active particle below ~0.8 L/2, measured (2D: r = 0.8 at 1e5 reaches 176 of
-// L/2 = 316 with 1e5 discs; 3D, --quick with 5e5 spheres, L/2 = 63: the front at 0.52-0.60 L/2
-// for r <= 0.8 and at 0.71 L/2 for r = 0.9 at t = 8000, R_front ~ t^0.27-0.29). The report lists
-// R_front / (L/2) at t_max for every case.
+// L/2 = 316 with 1e5 discs; 3D, 5e5 spheres, L/2 = 63: the front at 0.52-0.60 L/2 for r <= 0.8
+// and at 0.71 L/2 for r = 0.9 at t = 8000; 4e6 spheres, L/2 = 126: 0.47-0.6 L/2 for r = 0.7-0.9
+// at t = 1e5, R_front ~ t^0.24-0.29). The report lists R_front / (L/2) at t_max for every case.
+//
+// 3D, r >= 0.7: E_t's local slope reaches its plateau only after t ~ 2e4 (r = 0.7: -0.68 at 2e4,
+// -0.71 from 3e4 to 1e5; r = 0.8 and 0.85: -0.66 to -0.69 and -0.63 to -0.68 over 2e4-1e5; r =
+// 0.9: still -0.60 to -0.64 and drifting over 3e4-1e5, 2 realisations each of 4e6 spheres,
+// delta = 1e-6), so --full runs them to 1e5 in boxes of 4e6 spheres (22, 21, 33 CPU-s per
+// realisation) and leaves r = 0.9 short: it would need t ~ 1e6 and ~3e7 spheres. --quick cannot
+// afford that and reaches t_c1 in 3D only for r <= 0.5; the report names the others.
 //
 // --quick (< 3 min on 2 cores; CPU time per realisation ~0.7-4.6 s in 2D and 1.4-3.8 s in 3D, the
 // larger r costing more) keeps every figure and report section, at half the --full times in 2D
-// (r = 0.9 also half, its t_c1 being ~1e3) and a sixth to a quarter in 3D, with fewer
-// realisations: 16 (2D) or 12 (3D) for the paper's r < 1 (Figs. 3-5 and the plateau fits, with
-// bootstrap intervals ~2x wider than --full's), 12 or 8 for the added r, 10 or 8 for r = 1. It
-// resolves t_c1 for every r < 1 in 2D and, in 3D, for the r whose early growth has ended before
-// the front nears the box (the report names the others and says the box is the limit).
-// Measured at load ~5 (other builds): 326 CPU-s in all with 20 / 12 / 12 in 2D, against 424 for
-// the plan before (20-50 realisations), which took 280 s wall on a quiet machine.
+// (r = 0.9 also half, its t_c1 being ~1e2) and a sixth to a quarter in 3D, with 16 (2D) or 12
+// (3D) realisations for the paper's r < 1 (bootstrap intervals ~2x wider than --full's), 12 or 8
+// for the added r, 10 or 8 for r = 1. 83 s wall on a quiet machine before 0.85 was added.
 //
 // --full has the paper's sizes (2.5e5 discs, 2e6 spheres) but not its ~100 realisations per
-// case, which would take ~2 h on 2 cores (measured: 7295 s estimated for 100 everywhere): 40 /
-// 32 / 24 realisations in 2D (paper r, added r, r = 1) and 20 / 12 / 16 in 3D, where one
-// realisation costs 6-11 CPU-s against 1.2-6.8 in 2D (--estimate from CPU time at load 5: 1574 s
-// for 48 / 32 / 32 and 2D r = 0.9 to 2e5; for these, at load ~3: 1002 s from CPU time, 1482 s
-// from wall time, the 4e6-sphere blast 54 CPU-s per realisation). Its 3D times for r >= 0.7 are
-// shorter than the other r's because their fronts are faster: at 2e6 spheres (L/2 = 79) the front
-// of r = 0.9 reaches 0.7 L/2 near t = 2e4 (it would wrap by 5e4).
-Size size_of(FiguresMode m, int d) {
+// case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D (paper r, added r,
+// r = 1) and 20 / 12 / 16 in 3D.
+std::vector<RunSize> sizes_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:
-      return d == 2 ? Size{3000, {1500, 1500, 1500, 1500, 1500, 1500, 150}, 3, 3, 3}
-                    : Size{5000, {1000, 1000, 1000, 600, 600, 600, 80}, 3, 3, 3};
+      if (d == 2)
+        return {{0.1, 3000, 1500, 3}, {0.3, 3000, 1500, 3}, {0.5, 3000, 1500, 3},
+                {0.7, 3000, 1500, 3}, {0.8, 3000, 1500, 3}, {0.9, 3000, 1500, 3},
+                {1.0, 3000, 150, 3}};
+      return {{0.1, 5000, 1000, 3}, {0.3, 5000, 1000, 3}, {0.5, 5000, 1000, 3},
+              {0.7, 5000, 600, 3},  {0.8, 5000, 600, 3},  {0.85, 5000, 600, 3},
+              {0.9, 5000, 600, 3},  {1.0, 5000, 80, 3}};
     case FiguresMode::Quick:
-      return d == 2
-                 ? Size{100000, {100000, 100000, 100000, 100000, 100000, 50000, 12000}, 16, 12, 10}
-                 : Size{500000, {30000, 25000, 20000, 10000, 8000, 6000, 1200}, 12, 8, 8};
+      if (d == 2)
+        return {{0.1, 100000, 1e5, 16}, {0.3, 100000, 1e5, 12}, {0.5, 100000, 1e5, 16},
+                {0.7, 100000, 1e5, 12}, {0.8, 100000, 1e5, 16}, {0.9, 100000, 5e4, 12},
+                {1.0, 100000, 12000, 10}};
+      return {{0.1, 500000, 30000, 12}, {0.3, 500000, 25000, 8},  {0.5, 500000, 20000, 12},
+              {0.7, 500000, 10000, 8},  {0.8, 500000, 8000, 12},  {0.85, 500000, 7000, 8},
+              {0.9, 500000, 6000, 8},   {1.0, 500000, 1200, 8}};
     case FiguresMode::Full:
     default:
-      return d == 2
-                 ? Size{250000, {200000, 200000, 200000, 200000, 200000, 100000, 30000}, 40, 32, 24}
-                 : Size{2000000, {120000, 110000, 100000, 50000, 35000, 20000, 6000}, 20, 12, 16};
+      if (d == 2)
+        return {{0.1, 250000, 2e5, 40}, {0.3, 250000, 2e5, 32}, {0.5, 250000, 2e5, 40},
+                {0.7, 250000, 2e5, 32}, {0.8, 250000, 2e5, 40}, {0.9, 250000, 1e5, 32},
+                {1.0, 250000, 30000, 24}};
+      return {{0.1, 2000000, 120000, 20}, {0.3, 2000000, 110000, 12},
+              {0.5, 2000000, 100000, 20}, {0.7, 4000000, 100000, 12},
+              {0.8, 4000000, 100000, 20}, {0.85, 4000000, 100000, 12},
+              {0.9, 2000000, 20000, 12},  {1.0, 2000000, 6000, 16}};
   }
 }
+
+// 3D, r < 1: the cutoff below which collisions are elastic is 1e-6, not the paper's 1e-4. With
+// 1e-4, E_t's local slope turns back up (towards the elastic regime, t_c2: v_t ~ delta) before it
+// plateaus: from t ~ 5e3 at r = 0.1 (-0.70 to -0.655 by 2.4e4, 5e5 spheres) and ~3e4 at r = 0.7
+// (-0.69 to -0.63 by 6e4, 4e6 spheres, where 1e-6 gives -0.71 throughout); t_c2 ~ delta^-(4/3)
+// comes ~460 times later at 1e-6. 2D keeps the paper's 1e-4: its late slopes are the same with
+// 1e-6 (r = 0.1, 1e5 discs: -0.63 to -0.64 from 1e4 to 1e5 with either).
+constexpr double kCutoff3D = 1e-6;
 
 // The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
@@ -140,24 +157,21 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed) {
     plan.cases.push_back(std::move(c));
   };
   for (int d : {2, 3}) {
-    const Size s = size_of(mode, d);
-    for (int k = 0; k < 7; ++k) {
-      const double r = kRestitutions[k];
+    for (const RunSize& s : sizes_of(mode, d)) {
       EnsembleSpec e;
       e.physics.dim = d;
       e.physics.particles = s.particles;
-      e.physics.restitution = r;
-      e.physics.t_max = s.t_max[k];
-      e.realisations = r >= 1     ? s.realisations_elastic
-                       : extra(r) ? s.realisations_extra
-                                  : s.realisations;
+      e.physics.restitution = s.r;
+      if (d == 3 && s.r < 1) e.physics.cutoff = kCutoff3D;
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
       // The paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and 1 : 5/3 : 2.5 (3D).
       const double T = e.physics.t_max;
       e.snapshot_times = d == 2 ? std::vector<double>{T / 2, 0.75 * T, T}
                                 : std::vector<double>{0.4 * T, T * 2 / 3, T};
       // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
       std::string name = "d";
-      name.append(std::to_string(d)).append("_r").append(format_number(r));
+      name.append(std::to_string(d)).append("_r").append(format_number(s.r));
       add(name, e, CaseRole::Paper);
     }
   }
@@ -184,10 +198,11 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed) {
       add(std::string("d2_r0.1_delta").append(format_number(delta)), e, CaseRole::DeltaScan);
     }
   }
-  const double T = size_of(mode, 2).t_max[0];
+  const std::vector<RunSize> plane = sizes_of(mode, 2);
+  const double T = plane.front().t_max;  // r = 0.1
   // The paper's Fig. 1(a) times 5000, 10000, 20000, 50000 as fractions of the last.
   plan.fig1a_times = {T / 10, T / 5, T * 2 / 5, T};
-  plan.fig1b_time = size_of(mode, 2).t_max[6];
+  plan.fig1b_time = plane.back().t_max;  // r = 1
   return plan;
 }
 

@@ -435,17 +435,17 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
     CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false};
-    CrossoverSet slope{d, "slope rule (N_t), previous", {}, {}, true};
+    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true};
     for (const CaseResult* c : cases_of(results, d, false)) {
       const double r = c->plan->spec.physics.restitution;
       energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
-      slope.points.push_back(
-          {1 - r * r, "r = " + rtext(r), c->fits.tc1_slope, c->fits.tc1_slope_draws});
+      theory_b.points.push_back(
+          {1 - r * r, "r = " + rtext(r), c->fits.tc1_theory_b, c->fits.tc1_theory_b_draws});
     }
     energy.fit = fit_crossover_points(energy.points);
-    slope.fit = fit_crossover_points(slope.points);
+    theory_b.fit = fit_crossover_points(theory_b.points);
     x.tc1.push_back(std::move(energy));
-    x.tc1_slope.push_back(std::move(slope));
+    x.tc1_theory_b.push_back(std::move(theory_b));
   }
   CrossoverSet scan{2, "", {}, {}, false};
   for (const auto& c : results) {
@@ -480,7 +480,7 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
   }
   check(fig_packing(results, out));
   std::vector<CrossoverSet> tc1 = crossovers.tc1;
-  tc1.insert(tc1.end(), crossovers.tc1_slope.begin(), crossovers.tc1_slope.end());
+  tc1.insert(tc1.end(), crossovers.tc1_theory_b.begin(), crossovers.tc1_theory_b.end());
   check(fig_crossover_points(
       out,
       {"fig6_crossover",

@@ -33,7 +33,7 @@ struct CrossoverSet {
 // beside it, by the slope rule on N_t; t_c2 against the cutoff delta (phi2, from the 2D r = 0.1
 // scan).
 struct Crossovers {
-  std::vector<CrossoverSet> tc1, tc1_slope, tc2;
+  std::vector<CrossoverSet> tc1, tc1_theory_b, tc2;
 };
 Crossovers crossovers_of(const std::vector<CaseResult>& results);
 

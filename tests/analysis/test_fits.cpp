@@ -262,6 +262,38 @@ TEST(Crossover, EnergyIntersectionRecoversTc1AndPhi1) {
   EXPECT_NEAR(fit_crossover_exponent(control, tc1).phi, phi1, 3e-3);
 }
 
+TEST(Crossover, TheoryExponentReadingMeetsE0WhereTheFixedLawDoes) {
+  const auto t = log_grid(1e-3, 1e6, 40);
+  // On its asymptotic law the two readings agree: E_t = E_0 (t / t_c)^-b gives t_c either way.
+  {
+    std::vector<double> y;
+    for (double ti : t) y.push_back(0.5 * std::pow(ti / 20, -0.75));
+    const Window w{1e3, 1e6};
+    const Crossover fitted = crossover_energy(fit_power_law(t, y, w), 0.5, t.back(), "");
+    const Crossover fixed = crossover_energy(fit_power_law_fixed(t, y, w, -0.75), 0.5, t.back(), "");
+    ASSERT_TRUE(fitted.found && fixed.found);
+    EXPECT_NEAR(fixed.time, 20, 20 * 1e-9);
+    EXPECT_NEAR(fitted.time, 20, 20 * 1e-9);
+  }
+  // A shallower slope (still drifting, -0.6 against b = 3/4): the prefactor at fixed b is the
+  // geometric mean of y t^b over the window, by hand A (t_lo t_hi)^((b - 0.6) / 2) on a log grid
+  // symmetric in ln t, and the intersection moves accordingly.
+  std::vector<double> y;
+  for (double ti : t) y.push_back(2 * std::pow(ti, -0.6));
+  const PowerLawFit f = fit_power_law_fixed(t, y, {0.999e3, 1.001e5}, -0.75);
+  EXPECT_EQ(f.exponent, -0.75);
+  EXPECT_EQ(f.points, 81u);
+  const double a = 2 * std::pow(1e3 * 1e5, 0.15 / 2);
+  EXPECT_NEAR(f.prefactor / a, 1, 1e-12);
+  const Crossover c = crossover_energy(f, 0.5, 1e5, "");
+  ASSERT_TRUE(c.found) << c.note;
+  EXPECT_NEAR(c.time / std::pow(a / 0.5, 1 / 0.75), 1, 1e-12);
+  // The same UserErrors as the fitted law.
+  EXPECT_THROW(fit_power_law_fixed(t, y, {1e5, 1e3}, -0.75), UserError);
+  y[200] = 0;
+  EXPECT_THROW(fit_power_law_fixed(t, y, {1e1, 1e6}, -0.75), UserError);
+}
+
 TEST(Crossover, EnergyIntersectionNeedsASettledDissipatingPlateau) {
   const auto t = log_grid(1e-3, 1e6, 40);
   std::vector<double> y;

@@ -30,6 +30,25 @@ TEST(FiguresPlan, Phi1RestsOnSixRestitutionsInBothDimensions) {
     }
 }
 
+TEST(FiguresPlan, Full3DReachesTheEnergyPlateauAtLargeRWithoutWrapping) {
+  // Measured (4e6 spheres, delta = 1e-6, 2 realisations each): E_t's local slope plateaus from
+  // t ~ 2e4 at r = 0.7-0.85, and the plateau rule needs 0.5 decade of it; the fastest front
+  // (r = 0.9) is at 76 at t = 6.3e4 and grows as t^0.29. Without the smaller cutoff the slope
+  // turns back up from ~3e4 (t_c2), so every 3D r < 1 runs with delta <= 1e-6.
+  std::set<double> long_runs;
+  for (const FigureCase* c : of_role(figures_plan(FiguresMode::Full, 1), CaseRole::Paper)) {
+    const auto& p = c->spec.physics;
+    if (p.dim != 3 || p.restitution >= 1) continue;
+    EXPECT_LE(p.cutoff, 1e-6) << c->name;
+    if (p.restitution < 0.7 || p.restitution > 0.85) continue;
+    long_runs.insert(p.restitution);
+    EXPECT_GE(p.t_max, 2e4 * std::pow(10.0, 0.5)) << c->name;
+    const double half_box = 0.5 * std::cbrt(double(p.particles) / p.density);
+    EXPECT_LE(76 * std::pow(p.t_max / 6.3e4, 0.29), 0.7 * half_box) << c->name;
+  }
+  EXPECT_EQ(long_runs.size(), 3u);  // 0.7, 0.8, 0.85: with 0.1, 0.3, 0.5 the six values of phi1
+}
+
 TEST(FiguresPlan, DeltaScanHasFourCutoffsWhoseTc2FallsInsideTheRuns) {
   // t_c2 ~ delta^-3/2 (the paper's phi2 in 2D), anchored at t_c2 = 2.2e4 measured for delta =
   // 5e-4 (--quick, 12 realisations); the measured phi2 (~1.55) moves it by < 10% over these
