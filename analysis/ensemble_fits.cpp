@@ -218,16 +218,19 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
     if (f.tc1.found)
       f.tc1_draws = crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0,
                                            o.band_resamples, spec.physics.seed, 201);
-    // The same plateau window with E_t's exponent fixed at the theory's.
-    const PowerLawFit at_theory =
-        std::isfinite(energy->fit.exponent)
-            ? fit_power_law_fixed(t, ts.column("energy"), energy->fit.window, energy->theory)
-            : energy->fit;
-    f.tc1_theory_b = crossover_energy(at_theory, e0, t.back(), energy->note);
-    if (f.tc1_theory_b.found)
-      f.tc1_theory_b_draws =
-          crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0, o.band_resamples,
-                                 spec.physics.seed, 202, energy->theory);
+    // The same plateau window with E_t's exponent fixed at the theory's; where the fitted law
+    // gives no t_c1 (no settled plateau), neither does this reading, for the same reason.
+    if (f.tc1.found) {
+      const PowerLawFit at_theory =
+          fit_power_law_fixed(t, ts.column("energy"), energy->fit.window, energy->theory);
+      f.tc1_theory_b = crossover_energy(at_theory, e0, t.back(), energy->note);
+      if (f.tc1_theory_b.found)
+        f.tc1_theory_b_draws =
+            crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0, o.band_resamples,
+                                   spec.physics.seed, 202, energy->theory);
+    } else {
+      f.tc1_theory_b.note = f.tc1.note;
+    }
   }
 
   const auto& an = ts.column("anisotropy");

@@ -59,9 +59,27 @@ struct CrossoverExponentFit {
 };
 CrossoverExponentFit fit_crossover_points(const std::vector<CrossoverPoint>& points);
 
+// The effective exponent between neighbouring points, -d ln t_c / d ln control, for each pair of
+// successive found points in the order given (for phi1: r ascending, towards the elastic limit
+// in which phi1 is defined), with a 95% percentile interval over the pairs of bootstrap draws
+// (NaN with fewer than 10 pairs). Like a time series' local slope it shows whether one exponent
+// describes every point: a fit over r = 0.1 ... 0.85 mixes t_c1 of a few collision times
+// (r = 0.1) with those of the elastic limit.
+struct LocalCrossoverExponent {
+  std::string from, to;  // the two points' labels
+  double phi = std::numeric_limits<double>::quiet_NaN();
+  double ci_lo = std::numeric_limits<double>::quiet_NaN();
+  double ci_hi = std::numeric_limits<double>::quiet_NaN();
+};
+std::vector<LocalCrossoverExponent> local_crossover_exponents(
+    const std::vector<CrossoverPoint>& points);
+
 // theory_b: the fit of the t_c1 read with E_t's exponent fixed at the theory's, reported beside
 // the intersection rule's (its systematic).
 Comparison phi1_comparison(int d, const CrossoverExponentFit& fit, bool theory_b);
+// phi1 from the pair of found points nearest the elastic limit (the last of `local`); not
+// measured when there is none.
+Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossoverExponent>& local);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
 std::string comparisons_json(const std::vector<Comparison>& cmp);

@@ -157,8 +157,7 @@ namespace {
 
 // ln t and ln y over [first, last); UserError naming the window at a y <= 0.
 void log_points(std::span<const double> t, std::span<const double> y, std::size_t first,
-                std::size_t last, const Window& w, std::vector<double>& x,
-                std::vector<double>& z) {
+                std::size_t last, const Window& w, std::vector<double>& x, std::vector<double>& z) {
   for (std::size_t i = first; i < last; ++i) {
     if (!(y[i] > 0))
       throw UserError("scaling window " + window_text(w) + ": value " + format_double(y[i]) +

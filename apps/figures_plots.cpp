@@ -362,9 +362,8 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
       const std::string line =
           set.open ? std::string("lw 1 dt 3 lc rgb '") + (d == 2 ? "black" : "#a00000") + "'"
                    : theory_style(d);
-      plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title + " fit: " +
-              cp.name + " = " +
-              figure_number(f.fit.phi, 3) + interval + "'";
+      plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title +
+              " fit: " + cp.name + " = " + figure_number(f.fit.phi, 3) + interval + "'";
     }
   }
   write_csv(t, out.dir / (cp.base + ".csv"));
@@ -373,8 +372,7 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
     return out.plot(cp.base + ".gp",
                     gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
   gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
-        "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " + plot +
-        "\n";
+        "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " + plot + "\n";
   return out.plot(cp.base + ".gp", gp);
 }
 
@@ -451,8 +449,7 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;
-    scan.points.push_back(
-        {delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
+    scan.points.push_back({delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
   }
   scan.fit = fit_crossover_points(scan.points);
   x.tc2.push_back(std::move(scan));

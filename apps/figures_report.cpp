@@ -43,6 +43,22 @@ std::string crossover_notes(const std::vector<CaseResult>& results) {
   return notes.str();
 }
 
+// phi1 between neighbouring r (intersection rule), towards the elastic limit.
+std::string local_phi1_markdown(const Crossovers& crossovers) {
+  std::ostringstream md;
+  md << "### phi1 between neighbouring r\n\n"
+        "-d ln t_c1 / d ln(1 - r^2) between successive r whose t_c1 is found (intersection "
+        "rule), with 95% bootstrap intervals. phi1 is defined by the divergence as r -> 1: a "
+        "drift along the rows means that the fit over all r mixes regimes, and the last row is "
+        "the estimate nearest the elastic limit.\n\n"
+        "| d | between | phi1 | 95% interval |\n|---|---|---|---|\n";
+  for (const auto& set : crossovers.tc1)
+    for (const auto& e : local_crossover_exponents(set.points))
+      md << "| " << set.d << " | " << e.from << " and " << e.to << " | " << figure_number(e.phi, 3)
+         << " | [" << figure_number(e.ci_lo, 3) << ", " << figure_number(e.ci_hi, 3) << "] |\n";
+  return md.str();
+}
+
 }  // namespace
 
 void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
@@ -76,7 +92,7 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
 }
 
 void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,
-                          const std::vector<CaseResult>& results,
+                          const std::vector<CaseResult>& results, const Crossovers& crossovers,
                           const std::vector<Comparison>& cmp,
                           const std::vector<std::string>& problems) {
   std::ostringstream md;
@@ -94,7 +110,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
        << format_number(p.cutoff) << " | " << p.particles << " | " << figure_number(p.t_max)
        << " | " << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
        << figure_number(c.wall, 3) << " | " << crossover_cell(c.fits.tc1) << " | "
-       << crossover_cell(c.fits.tc1_theory_b) << " | " << crossover_cell(c.fits.tc2) << " | " << figure_number(front_reach(c), 2) << " |\n";
+       << crossover_cell(c.fits.tc1_theory_b) << " | " << crossover_cell(c.fits.tc2) << " | "
+       << figure_number(front_reach(c), 2) << " |\n";
   }
   md << "\nt_c1: where the plateau law of <E_t> meets E_0 (intersection rule); t_c1 (b = "
         "theory): the same with E_t's exponent fixed at the theory's; t_c2: the slope rule's "
@@ -105,7 +122,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
   md << "\nEach case's averaged time series, distributions and fits are in `ensembles/<case>/` "
         "(see its summary.json for the windows and intervals); each exponent's row links the "
         "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
-     << comparisons_markdown(cmp) << "\n## Definitions\n\n"
+     << comparisons_markdown(cmp) << "\n"
+     << local_phi1_markdown(crossovers) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";

@@ -25,7 +25,7 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
                            const std::vector<std::string>& problems);
 
 void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,
-                          const std::vector<CaseResult>& results,
+                          const std::vector<CaseResult>& results, const Crossovers& crossovers,
                           const std::vector<Comparison>& cmp,
                           const std::vector<std::string>& problems);
 

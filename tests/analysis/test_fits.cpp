@@ -270,7 +270,8 @@ TEST(Crossover, TheoryExponentReadingMeetsE0WhereTheFixedLawDoes) {
     for (double ti : t) y.push_back(0.5 * std::pow(ti / 20, -0.75));
     const Window w{1e3, 1e6};
     const Crossover fitted = crossover_energy(fit_power_law(t, y, w), 0.5, t.back(), "");
-    const Crossover fixed = crossover_energy(fit_power_law_fixed(t, y, w, -0.75), 0.5, t.back(), "");
+    const Crossover fixed =
+        crossover_energy(fit_power_law_fixed(t, y, w, -0.75), 0.5, t.back(), "");
     ASSERT_TRUE(fitted.found && fixed.found);
     EXPECT_NEAR(fixed.time, 20, 20 * 1e-9);
     EXPECT_NEAR(fitted.time, 20, 20 * 1e-9);
@@ -307,7 +308,8 @@ TEST(Crossover, EnergyIntersectionNeedsASettledDissipatingPlateau) {
   // Within the slope's smoothing half width (0.1 decade) of the end, it is the late plateau.
   EXPECT_TRUE(crossover_energy(fit_power_law(t, y, {1e3, 0.85e6}), 0.5, t.back(), "").found);
   // No fit, or a fit that does not dissipate: no crossover, and the note says why.
-  const Crossover none = crossover_energy(PowerLawFit{}, 0.5, t.back(), "no plateau within the run");
+  const Crossover none =
+      crossover_energy(PowerLawFit{}, 0.5, t.back(), "no plateau within the run");
   EXPECT_FALSE(none.found);
   EXPECT_NE(none.note.find("no plateau within the run"), std::string::npos) << none.note;
   fit.exponent = 0.1;

@@ -260,8 +260,8 @@ TEST(CrossoverExponents, RecoverPhi1FromTheEnergyIntersectionWithAnInterval) {
   for (double r : {0.1, 0.3, 0.5, 0.7, 0.8, 0.9}) {
     const double tc = 3 * std::pow(1 - r * r, -phi1);
     const auto x = ensemble_of(
-        t, [&](double s) { return e0 * std::pow(1 + s / tc, -b); }, 12,
-        std::uint64_t(r * 1000) + 1, 1e-3);
+        t, [&](double s) { return e0 * std::pow(1 + s / tc, -b); }, 12, std::uint64_t(r * 1000) + 1,
+        1e-3);
     const Plateau p = find_plateau(local_slope_band(t, x));
     ASSERT_TRUE(p.found) << p.note;
     const PowerLawFit fit = fit_power_law_bootstrap(t, x, p.window);
@@ -283,6 +283,45 @@ TEST(CrossoverExponents, RecoverPhi1FromTheEnergyIntersectionWithAnInterval) {
   EXPECT_GE(f.ci_hi, phi1 - 0.1);
   EXPECT_LT(f.ci_hi - f.ci_lo, 0.6);
   EXPECT_GT(f.ci_hi - f.ci_lo, 0.05);  // the amplitude noise is in it
+}
+
+TEST(CrossoverExponents, LocalPhi1BetweenNeighbouringRFollowsADrift) {
+  // t_c = (1 - r^2)^-phi(r) with phi stepping from 4 to 2.5 towards r -> 1, as 3D's measured
+  // t_c1 do: each local exponent is that of its pair, by hand; a point without a crossover is
+  // skipped, its neighbours paired across it.
+  const std::vector<double> rs = {0.1, 0.5, 0.7, 0.8, 0.85};
+  std::vector<CrossoverPoint> points;
+  double ln_t = 0;
+  for (std::size_t k = 0; k < rs.size(); ++k) {
+    const double control = 1 - rs[k] * rs[k];
+    if (k > 0) {
+      const double phi = k == 1 ? 4.0 : k == 2 ? 3.0 : 2.5;
+      ln_t -= phi * (std::log(control) - std::log(1 - rs[k - 1] * rs[k - 1]));
+    }
+    CrossoverPoint p{control, "r = " + std::to_string(rs[k]), {}, {}};
+    p.crossover.found = true;
+    p.crossover.time = std::exp(ln_t);
+    // Draws scattered by a factor e^(+-0.05) around the time, alternating.
+    for (int b = 0; b < 40; ++b)
+      p.draws.push_back(p.crossover.time * std::exp(0.05 * ((b + int(k)) % 2 ? 1 : -1)));
+    points.push_back(p);
+  }
+  CrossoverPoint missing{1 - 0.9 * 0.9, "r = 0.9", {}, {}};
+  points.push_back(missing);  // not found: no pair
+  const auto local = local_crossover_exponents(points);
+  ASSERT_EQ(local.size(), 4u);
+  const double expected[4] = {4.0, 3.0, 2.5, 2.5};
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_NEAR(local[k].phi, expected[k], 1e-12) << k;
+    EXPECT_LT(local[k].ci_lo, local[k].phi);
+    EXPECT_GT(local[k].ci_hi, local[k].phi);
+  }
+  // The elastic-limit reading is the last pair's, 0.8 and 0.85.
+  const Comparison c = phi1_elastic_limit_comparison(3, local);
+  EXPECT_NEAR(c.measured, 2.5, 1e-12);
+  EXPECT_NE(c.note.find(local.back().from), std::string::npos) << c.note;
+  EXPECT_NEAR(c.uncertainty, 0.5 * (local.back().ci_hi - local.back().ci_lo), 1e-12);
+  EXPECT_FALSE(phi1_elastic_limit_comparison(3, {}).measured_ok());
 }
 
 TEST(EnsembleFits, AWindowWithoutAPlateauIsRefusedSayingWhereItPlateaus) {
