@@ -37,11 +37,12 @@ struct RunSize {
 // larger r costing more) keeps every figure and report section, at half the --full times in 2D
 // (r = 0.9 also half, its t_c1 being ~1e2) and a sixth to a quarter in 3D, with 16 (2D) or 12
 // (3D) realisations for the paper's r < 1 (bootstrap intervals ~2x wider than --full's), 12 or 8
-// for the added r, 10 or 8 for r = 1. 83 s wall on a quiet machine before 0.85 was added.
+// for the added r, 10 or 8 for r = 1. Measured on a quiet machine: 81 s wall.
 //
-// --full has the paper's sizes (2.5e5 discs, 2e6 spheres) but not its ~100 realisations per
-// case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D (paper r, added r,
-// r = 1) and 20 / 12 / 16 in 3D.
+// --full has the paper's sizes (2.5e5 discs, 2e6 spheres; 4e6 for 3D r = 0.7-0.85) but not its
+// ~100 realisations per case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D
+// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. Measured on a quiet machine: 851 s wall
+// (1553 CPU-s), of which 3D r = 0.7, 0.8, 0.85 take 63, 176, 159 s; --estimate: 823 s.
 std::vector<RunSize> sizes_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:
