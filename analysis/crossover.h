@@ -13,7 +13,8 @@
 // "theory b" reading): a plateau slope shallower than b (the slope still drifting towards it, as
 // in 3D at r >= 0.7) extrapolates back to E_0 differently under the two, and the difference
 // between the phi1 of each is the rule's systematic.
-// t_c1, slope rule on N_t (kept beside it, the previous reading): with s(t) the local log-slope
+// t_c1, slope rule on N_t (the previous reading, kept in each ensemble's summary.json but no
+// longer fitted for phi1): with s(t) the local log-slope
 // of N_t (power_law.h) and the target its asymptotic value alpha d, the time from which s stays
 // at or below the upper edge of the band target +- `tolerance` (relative) to the end of the
 // examined range. Measured, it does not depend on r (t ~ 500-800 in 2D for r = 0.1 ... 0.9):

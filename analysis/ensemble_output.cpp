@@ -220,8 +220,8 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
            "fitted to <E_t> on the plateau of its local slope meets the kick's energy E_0 (the "
            "elastic regime conserves it); t_c1_theory_b = the same with b fixed at the "
            "theory's and a fitted on that plateau; t_c1_slope_rule = time from which the local "
-           "slope of "
-           "<N_t> stays at or below the upper edge of a 10% band around alpha d, up to t_c2 "
+           "slope of <N_t> stays at or below the upper edge of a 10% band around alpha d, up to "
+           "t_c2 "
            "where the run reaches it; t_c2 = time from which that slope stays above the band "
            "(towards the elastic regime)")
     << ",\n";
