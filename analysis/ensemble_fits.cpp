@@ -215,20 +215,19 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
     const ExponentFit* energy = find_exponent(f, "E_t");
     GS_CHECK(energy != nullptr);
     f.tc1 = crossover_energy(energy->fit, e0, t.back(), energy->note);
-    if (f.tc1.found)
-      f.tc1_draws = crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0,
-                                           o.band_resamples, spec.physics.seed, 201);
-    // The same plateau window with E_t's exponent fixed at the theory's; where the fitted law
-    // gives no t_c1 (no settled plateau), neither does this reading, for the same reason.
     if (f.tc1.found) {
-      const PowerLawFit at_theory =
-          fit_power_law_fixed(t, ts.column("energy"), energy->fit.window, energy->theory);
-      f.tc1_theory_b = crossover_energy(at_theory, e0, t.back(), energy->note);
+      const Window& w = energy->fit.window;
+      const auto energies = curves_of(sums, 1);
+      f.tc1_draws =
+          crossover_energy_draws(t, energies, w, e0, o.band_resamples, spec.physics.seed, 201);
+      // The same plateau window with E_t's exponent fixed at the theory's.
+      f.tc1_theory_b = crossover_energy(
+          fit_power_law_fixed(t, ts.column("energy"), w, energy->theory), e0, t.back(), "");
       if (f.tc1_theory_b.found)
-        f.tc1_theory_b_draws =
-            crossover_energy_draws(t, curves_of(sums, 1), energy->fit.window, e0, o.band_resamples,
-                                   spec.physics.seed, 202, energy->theory);
+        f.tc1_theory_b_draws = crossover_energy_draws(t, energies, w, e0, o.band_resamples,
+                                                      spec.physics.seed, 202, energy->theory);
     } else {
+      // No settled plateau for the fitted law: none for this reading either, for that reason.
       f.tc1_theory_b.note = f.tc1.note;
     }
   }

@@ -158,8 +158,7 @@ void run(const FiguresOptions& o) {
   const Crossovers x = crossovers_of(results);
   for (const auto& set : x.tc1) cmp.push_back(phi1_comparison(set.d, set.fit, false));
   for (const auto& set : x.tc1_theory_b) cmp.push_back(phi1_comparison(set.d, set.fit, true));
-  for (const auto& set : x.tc1)
-    cmp.push_back(phi1_elastic_limit_comparison(set.d, local_crossover_exponents(set.points)));
+  for (const auto& set : x.tc1) cmp.push_back(phi1_elastic_limit_comparison(set.d, set.local));
   cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, formats);
   const FiguresRun run{mode, o.seed, o.threads, since(t0), sim_wall};

@@ -432,8 +432,8 @@ std::string slope_figure_of(const FigureCase& c) {
 Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
-    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false};
-    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true};
+    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}};
+    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}};
     for (const CaseResult* c : cases_of(results, d, false)) {
       const double r = c->plan->spec.physics.restitution;
       energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
@@ -441,11 +441,12 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
           {1 - r * r, "r = " + rtext(r), c->fits.tc1_theory_b, c->fits.tc1_theory_b_draws});
     }
     energy.fit = fit_crossover_points(energy.points);
+    energy.local = local_crossover_exponents(energy.points);
     theory_b.fit = fit_crossover_points(theory_b.points);
     x.tc1.push_back(std::move(energy));
     x.tc1_theory_b.push_back(std::move(theory_b));
   }
-  CrossoverSet scan{2, "", {}, {}, false};
+  CrossoverSet scan{2, "", {}, {}, false, {}};
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;

@@ -27,11 +27,12 @@ struct CrossoverSet {
   std::vector<CrossoverPoint> points;
   CrossoverExponentFit fit;
   bool open = false;  // drawn with open symbols: a reading beside the reported one
+  std::vector<LocalCrossoverExponent> local;  // between neighbouring points (tc1 only)
 };
 
 // t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1) by the intersection rule and,
-// beside it, by the slope rule on N_t; t_c2 against the cutoff delta (phi2, from the 2D r = 0.1
-// scan).
+// beside it, with E_t's exponent fixed at the theory's; t_c2 against the cutoff delta (phi2,
+// from the 2D r = 0.1 scan).
 struct Crossovers {
   std::vector<CrossoverSet> tc1, tc1_theory_b, tc2;
 };

@@ -53,7 +53,7 @@ std::string local_phi1_markdown(const Crossovers& crossovers) {
         "the estimate nearest the elastic limit.\n\n"
         "| d | between | phi1 | 95% interval |\n|---|---|---|---|\n";
   for (const auto& set : crossovers.tc1)
-    for (const auto& e : local_crossover_exponents(set.points))
+    for (const auto& e : set.local)
       md << "| " << set.d << " | " << e.from << " and " << e.to << " | " << figure_number(e.phi, 3)
          << " | [" << figure_number(e.ci_lo, 3) << ", " << figure_number(e.ci_hi, 3) << "] |\n";
   return md.str();
