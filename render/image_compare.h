@@ -13,6 +13,7 @@
 //
 // PSNR and SSIM are reported beside the rule, not part of it: they summarise how far apart two
 // pictures are where the rule only says alike or not.
+#include <algorithm>
 #include <limits>
 
 #include "render/image.h"
@@ -20,21 +21,38 @@
 namespace gs::render {
 
 struct CompareOptions {
-  int channel_tolerance = 24;             // of 255, per R, G, B
-  double max_differing_fraction = 0.001;  // of the pixels
+  int channel_tolerance = 10;  // of 255, largest of R, G, B, beyond every blend of neighbours
+  long max_blob_pixels = 5;    // a blob with more differing pixels than this is a difference
+  long max_blob_mass = 150;    // so is one whose differences beyond the tolerance sum to more
+};
+
+// A connected (8-neighbour) group of differing pixels.
+struct Blob {
+  long pixels = 0;
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // bounding box, inclusive, row 0 at the top
+  int peak = 0;                          // largest unexplained channel difference in it
+  long mass = 0;                         // sum of the unexplained differences beyond tolerance
 };
 
 struct ImageComparison {
   bool same_size = false;
   long pixels = 0;
-  long differing = 0;  // pixels beyond the channel tolerance
-  long allowed = 0;    // the most differing pixels the options allow
-  int max_channel_difference = 0;
+  long differing = 0;  // pixels that neither picture explains from the other (the rule above)
+  long blobs = 0;      // connected groups of them
+  Blob largest;        // the one that exceeds the limits most (most pixels, else most mass)
+  long max_pixels = 0, max_mass = 0;  // the limits of the options
+  // True when the blob is within both limits.
+  bool within(const Blob& b) const { return excess_of(b) <= 1; }
+  // How far a blob is from the limits: the larger of pixels / max_pixels and mass / max_mass.
+  double excess_of(const Blob& b) const {
+    return std::max(double(b.pixels) / double(std::max(1L, max_pixels)),
+                    double(b.mass) / double(std::max(1L, max_mass)));
+  }
+  int max_channel_difference = 0;  // pixel by pixel, before the neighbourhood
   double mse = 0;  // mean squared difference over R, G, B, in levels^2
   double psnr = std::numeric_limits<double>::infinity();  // dB, +inf when identical
   double ssim = 1;
-  bool match() const { return same_size && differing <= allowed; }
-  double differing_fraction() const { return pixels ? double(differing) / double(pixels) : 0; }
+  bool match() const { return same_size && within(largest); }
 };
 
 // Everything above for two pictures; only same_size (false) when their sizes differ.
@@ -50,9 +68,9 @@ double psnr_of_mse(double mse);
 // smaller than the window is one window. Sizes must agree.
 double ssim(const Image& a, const Image& b);
 
-// Differing pixels in red over a faded grey copy of `actual`; pixels outside `expected` count as
-// differing.
-Image diff_image(const Image& expected, const Image& actual, int channel_tolerance = 24);
+// Differing pixels (by the rule above) in red over a faded grey copy of `actual`; all red when
+// the sizes differ.
+Image diff_image(const Image& expected, const Image& actual, const CompareOptions& options = {});
 
 // Totals of a frame-by-frame comparison of two movies: the movies are alike when they have the
 // same number of frames and every frame is alike.
@@ -60,8 +78,8 @@ struct SequenceComparison {
   int frames = 0;  // compared
   bool same_count = true;
   bool same_size = true;
-  int worst_frame = -1;  // the frame with the largest differing fraction
-  double worst_fraction = 0;
+  int worst_frame = -1;  // the frame with the largest blob
+  ImageComparison worst;  // that frame's comparison
   bool all_match = true;
   int max_channel_difference = 0;
   double sum_mse = 0, sum_ssim = 0;
