@@ -40,10 +40,6 @@ constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary
 // The stages of a job after sampling, kept in checkpoints: a resume redoes the unfinished one.
 enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1 };
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::string times_toml(const std::vector<double>& times) {
   std::string s = "[";
   for (std::size_t k = 0; k < times.size(); ++k) s += (k ? ", " : "") + format_double(times[k]);
