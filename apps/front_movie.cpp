@@ -284,12 +284,13 @@ class LiveFrames final : public Frames {
 // frames after it.
 class StoredFrames final : public Frames {
  public:
-  explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {}
+  StoredFrames(std::vector<std::string> paths, const ReadOptions& read)
+      : paths_(std::move(paths)), read_(read) {}
   std::size_t size() const override { return entries_.size(); }
   // UserError naming a file that cannot be opened or holds no frame.
   void list() {
     for (std::size_t file = 0; file < paths_.size(); ++file) {
-      const std::size_t n = open_snapshots(paths_[file]).frame_count();
+      const std::size_t n = open_snapshots(paths_[file], read_).frame_count();
       if (n == 0) throw UserError("snapshot '" + paths_[file] + "' holds no frame");
       counts_.push_back(n);
       for (std::size_t j = 0; j < n; ++j) entries_.push_back({file, j});
@@ -302,7 +303,7 @@ class StoredFrames final : public Frames {
     return counts_[e.file] == 1 ? file : "frame " + std::to_string(e.frame) + " of " + file;
   }
   Snapshot read_frame(std::size_t k) const {
-    return read(open_snapshots(paths_[entries_[k].file]), entries_[k].frame);
+    return read(open_snapshots(paths_[entries_[k].file], read_), entries_[k].frame);
   }
   // Reorders the frames: frame k becomes the one that was frame `order[k]`.
   void reorder(const std::vector<std::size_t>& order) {
@@ -332,7 +333,7 @@ class StoredFrames final : public Frames {
     };
     // A file's frames as list() counted them: a file that changed since reads as an error.
     auto open = [&](std::size_t file) {
-      SnapshotFile f = open_snapshots(paths_[file]);
+      SnapshotFile f = open_snapshots(paths_[file], read_);
       if (f.frame_count() != counts_[file])
         throw UserError(
             "snapshot '" + paths_[file] + "' changed while the movie was made: it had " +
@@ -403,6 +404,7 @@ class StoredFrames final : public Frames {
     }
   }
   std::vector<std::string> paths_;
+  ReadOptions read_;
   std::vector<Entry> entries_;       // frame k of the movie is frame entries_[k].frame of a file
   std::vector<std::size_t> counts_;  // frames in each file
 };
@@ -758,7 +760,7 @@ FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMov
 
 struct StoredMovie::Impl {
   Impl(const std::vector<std::string>& files, const FrontMovieOptions& o)
-      : frames(files), options(o) {}
+      : frames(files, o.read), options(o) {}
   StoredFrames frames;
   Prepared prepared;
   FrontMovieOptions options;
@@ -848,6 +850,10 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   m.frames.list();
   const Snapshot s = m.frames.read_frame(0);
   m.first_name = m.frames.name(0);
+  // What the reader assumed (masses, time from steps, wrapping), said once for the movie.
+  if (!o.quiet)
+    for (const auto& note : s.notes)
+      std::fprintf(stderr, "grainshock: %s: %s\n", m.first_name.c_str(), note.c_str());
   m.first_dim = s.info.dim;
   m.first_box = s.info.box;
   p.plan.style.field = render::choose_field(o.colour_by, s, files.front());

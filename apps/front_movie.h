@@ -10,6 +10,7 @@
 
 #include "render/movie_writer.h"
 #include "sim/config.h"
+#include "sim/snapshot_file.h"
 
 namespace gs::app {
 
@@ -37,6 +38,7 @@ struct FrontMovieOptions {
   bool keep_frames = false;  // also write DIR/frames/frame_NNNNN.png
   std::string backend = "auto";
   bool quiet = false;
+  ReadOptions read;  // stored snapshots: --dt (--dim is the simulation's flag)
 };
 
 // Throws UserError naming the flag if these options cannot make a movie of this run. Touches

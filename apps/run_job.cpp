@@ -20,6 +20,7 @@
 #include "sim/format.h"
 #include "sim/snapshot_file.h"
 #include "sim/stop.h"
+#include "sim/trajectory.h"
 
 namespace gs::app {
 namespace {
@@ -187,6 +188,15 @@ bool write_elastic_comparison(const fs::path& dir, const RunOptions& o) {
   return true;
 }
 
+// Every snapshot time in one file, read back from the snapshot files (so that a resumed run
+// writes the same trajectory).
+void write_trajectory(const fs::path& dir, const RunOptions& o) {
+  const auto out = open_trajectory((dir / o.trajectory).string(), trajectory_format(o.trajectory));
+  for (double t : snapshot_times(o.plan))
+    out->add(read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
+  out->finish();
+}
+
 bool finished_run(const fs::path& dir) {
   std::ifstream f(dir / "summary.json");
   std::stringstream text;
@@ -229,8 +239,26 @@ void add_run_flags(CLI::App& sub, RunOptions& o) {
          "all, or active: only the particles that have collided (pictures and fronts, not "
          "packing, which needs the gas at rest)")
       ->option_text("all|active (all)");
+  sub.add_option_function<std::string>(
+         "--trajectory",
+         [&o](const std::string& v) {
+           const bool plain =
+               !v.empty() && v.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                 "0123456789._-") == std::string::npos &&
+               v[0] != '.';
+           if (!plain)
+             throw CLI::ValidationError("--trajectory", "'" + v +
+                                                            "' is not a file name in the run "
+                                                            "folder (letters, digits, . _ -)");
+           trajectory_format(v);  // UserError for another extension
+           o.trajectory = v;
+         },
+         "Also write every snapshot time into DIR/FILE, one trajectory that OVITO and ASE open as "
+         "a sequence: FILE.gsd (HOOMD GSD) or FILE.xyz (extended XYZ)")
+      ->option_text("FILE.gsd|FILE.xyz");
   sub.add_flag("--png", o.png,
-               "Draw every snapshot into frames/*.png (colour = speed) and overlay them all");
+               "Draw every snapshot into frames/*.png (colour = v / v_rms for a kick, speed for a "
+               "thermal gas) and overlay them all");
   sub.add_flag("--compare-elastic", o.compare_elastic,
                "Also run the same kick with r = 1 to half of t-max, like the paper's Fig. 1(b)");
   sub.add_flag("--movie", o.movie,
@@ -260,6 +288,7 @@ std::string run_toml(const RunOptions& o) {
     << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
     << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
     << "snapshot-times = " << times_toml(o.plan.snapshot_times) << "\n"
+    << (o.trajectory.empty() ? "" : "trajectory = \"" + o.trajectory + "\"\n")
     << "png = " << (o.png ? "true" : "false") << "\n"
     << "compare-elastic = " << (o.compare_elastic ? "true" : "false") << "\n"
     << "movie = " << (o.movie ? "true" : "false") << "\n"
@@ -287,6 +316,8 @@ RunOptions read_run_file(const fs::path& file) {
 
 int run_job(const RunOptions& o, bool resume) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
+  if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
+    throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;
@@ -324,7 +355,9 @@ int run_job(const RunOptions& o, bool resume) {
     if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
       fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
   } else {
-    dir = prepare_output_dir(o.out, o.force, kRunOutputs);
+    std::vector<const char*> replaced(std::begin(kRunOutputs), std::end(kRunOutputs));
+    if (!o.trajectory.empty()) replaced.push_back(o.trajectory.c_str());
+    dir = prepare_output_dir(o.out, o.force, replaced);
     lock_output_dir(dir);
     remove_leftovers(dir);
     write_file_atomic(dir / "run.toml", spec);
@@ -358,6 +391,7 @@ int run_job(const RunOptions& o, bool resume) {
     }
   }
   const auto t2 = std::chrono::steady_clock::now();
+  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
   if (!stopped && o.png) stopped = !write_pictures(dir, o);
   if (!stopped && o.compare_elastic) stopped = !write_elastic_comparison(dir, o);
   if (!stopped && o.movie) {
