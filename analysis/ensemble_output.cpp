@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "analysis/json.h"
-#include "sim/atomic_file.h"
+#include "io/atomic_file.h"
 #include "sim/error.h"
 #include "sim/format.h"
 

@@ -10,10 +10,10 @@
 
 #include "apps/commands.h"
 #include "apps/exit_code.h"
+#include "io/atomic_file.h"
 #include "render/image_compare.h"
 #include "render/movie_reader.h"
 #include "render/png.h"
-#include "sim/atomic_file.h"
 #include "sim/error.h"
 
 namespace gs::app {

@@ -14,6 +14,8 @@
 #include "apps/ensemble_cli.h"
 #include "apps/exit_code.h"
 #include "apps/progress.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 

@@ -14,15 +14,19 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/ensemble_cli.h"
-#include "apps/figures_plan.h"
-#include "apps/figures_plots.h"
-#include "apps/figures_report.h"
-#include "apps/plot.h"
 #include "apps/progress.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
+#include "jobs/figures_plan.h"
+#include "jobs/figures_plots.h"
+#include "jobs/figures_report.h"
+#include "jobs/plot.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 
 namespace gs::app {
+
+using namespace jobs;
 namespace {
 
 namespace fs = std::filesystem;

@@ -13,6 +13,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/ensemble_cli.h"
+#include "io/output_dir.h"
 #include "sim/error.h"
 
 namespace gs::app {

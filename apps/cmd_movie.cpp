@@ -1,7 +1,7 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
 // DIR/movie.mp4 beside movie.toml (every setting, for --config), with checkpoints that
 // `grainshock resume DIR` goes on from, or, given snapshot files, draws them in order of their
-// time into DIR/movie.mp4 (see apps/front_movie.h).
+// time into DIR/movie.mp4 (see jobs/movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
@@ -14,12 +14,17 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/exit_code.h"
-#include "apps/front_movie.h"
+#include "apps/progress.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
+#include "jobs/movie.h"
 #include "sim/config.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 
 namespace gs::app {
+
+using namespace jobs;
 namespace {
 
 // What a movie writes into its folder; --force removes these first, so that a folder never
@@ -144,6 +149,7 @@ void add_movie_command(CLI::App& app) {
       "parts into one movie.mp4 without encoding again. A stopped movie also leaves a playable "
       "movie.mp4 of its frames so far.");
   sub->callback([opt, sub] {
+    opt->movie.progress = terminal_progress(opt->movie.quiet);
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
@@ -211,6 +217,7 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
                     file.string() + " --out " + dir.string() + " --force");
   validate(job.physics);
   job.movie.quiet = quiet;
+  job.movie.progress = terminal_progress(quiet);
   lock_output_dir(dir);
   remove_leftovers(dir);
   const MovieCheckpoints checkpoints{text.str(), checkpoint_every};

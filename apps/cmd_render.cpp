@@ -6,13 +6,13 @@
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "io/snapshot_file.h"
 #include "render/colormap.h"
 #include "render/field.h"
 #include "render/png.h"
 #include "render/renderer.h"
 #include "sim/error.h"
 #include "sim/format.h"
-#include "sim/snapshot_file.h"
 
 namespace gs::app {
 

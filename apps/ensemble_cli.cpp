@@ -4,6 +4,7 @@
 
 #include "analysis/json.h"
 #include "apps/cli.h"
+#include "io/atomic_file.h"
 #include "sim/error.h"
 
 namespace gs::app {

@@ -2,7 +2,7 @@
 // The state of a run at one instant, as every consumer downstream of the engine sees it
 // (analysis, renderer, snapshot files). Positions are unwrapped across the periodic boundary,
 // so a band that straddles the box edge stays in one piece; 1D and 2D snapshots have zeros in the
-// unused components. Files of other programs fill what they have (see sim/snapshot_file.h).
+// unused components. Files of other programs fill what they have (see io/snapshot_file.h).
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>

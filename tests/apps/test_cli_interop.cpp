@@ -8,7 +8,7 @@
 
 #include "tests/apps/cli_test_util.h"
 #include "render/png.h"
-#include "sim/snapshot_file.h"
+#include "io/snapshot_file.h"
 
 namespace gs {
 namespace {

@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include "io/snapshot_file.h"
 #include "render/png.h"
-#include "sim/snapshot_file.h"
 #include "tests/apps/cli_test_util.h"
 #include "tests/render/movie_decode.h"
 

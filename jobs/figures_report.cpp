@@ -1,0 +1,149 @@
+#include "jobs/figures_report.h"
+
+#include <sstream>
+
+#include "analysis/json.h"
+#include "io/atomic_file.h"
+#include "sim/format.h"
+
+namespace gs::jobs {
+namespace {
+
+std::string crossover_cell(const Crossover& c) {
+  return c.found ? figure_number(c.time, 3) : "-";
+}
+
+// The front radius at the last sample over half the box side.
+double front_reach(const CaseResult& c) {
+  const Table ts = c.sums.timeseries();
+  return ts.column("front_radius").back() / (0.5 * c.plan->spec.physics.box());
+}
+
+// Which crossovers were found, and why the others were not: a crossover beyond a run whose front
+// is already near the box is out of reach of that box, not merely of the run's length.
+std::string crossover_notes(const std::vector<CaseResult>& results) {
+  std::ostringstream notes;
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    const bool scan = c.plan->role == CaseRole::DeltaScan;
+    if (!(c.plan->role == CaseRole::Paper && p.restitution < 1) && !scan) continue;
+    const Crossover& tc = scan ? c.fits.tc2 : c.fits.tc1;
+    if (tc.found && !scan) continue;
+    notes << "- " << (scan ? "t_c2" : "t_c1") << " of " << c.plan->name << " (d = " << p.dim
+          << ", r = " << format_number(p.restitution)
+          << (scan ? ", delta = " + format_number(p.cutoff) : std::string())
+          << "): " << (tc.found ? "= " + figure_number(tc.time) : "not found: " + tc.note);
+    const double reach = front_reach(c);
+    if (!tc.found && reach > 0.6)
+      notes << ". The front is at " << figure_number(reach, 2)
+            << " of L/2 at t_max = " << figure_number(p.t_max)
+            << ": a longer run needs a larger box (more particles)";
+    notes << ".\n";
+  }
+  return notes.str();
+}
+
+// phi1 between neighbouring r (intersection rule), towards the elastic limit.
+std::string local_phi1_markdown(const Crossovers& crossovers) {
+  std::ostringstream md;
+  md << "### phi1 between neighbouring r\n\n"
+        "-d ln t_c1 / d ln(1 - r^2) between successive r whose t_c1 is found (intersection "
+        "rule), with 95% bootstrap intervals. phi1 is defined by the divergence as r -> 1: a "
+        "drift along the rows means that the fit over all r mixes regimes, and the last row is "
+        "the estimate nearest the elastic limit.\n\n"
+        "| d | between | phi1 | 95% interval |\n|---|---|---|---|\n";
+  for (const auto& set : crossovers.tc1)
+    for (const auto& e : set.local)
+      md << "| " << set.d << " | " << e.from << " and " << e.to << " | " << figure_number(e.phi, 3)
+         << " | [" << figure_number(e.ci_lo, 3) << ", " << figure_number(e.ci_hi, 3) << "] |\n";
+  return md.str();
+}
+
+}  // namespace
+
+void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
+                           const std::vector<CaseResult>& results,
+                           const std::vector<Comparison>& cmp,
+                           const std::vector<std::string>& problems) {
+  std::ostringstream j;
+  j << "{\n  \"version\": " << json_string(GRAINSHOCK_VERSION)
+    << ",\n  \"mode\": " << json_string(to_string(run.mode)) << ",\n  \"seed\": " << run.seed
+    << ",\n  \"threads\": " << run.threads << ",\n  \"wall_seconds\": " << json_number(run.wall)
+    << ",\n  \"simulation_wall_seconds\": " << json_number(run.simulation_wall)
+    << ",\n  \"cases\": [\n";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const auto& c = results[k];
+    const auto& p = c.plan->spec.physics;
+    j << "    {\"name\": " << json_string(c.plan->name) << ", \"d\": " << p.dim
+      << ", \"r\": " << json_number(p.restitution) << ", \"particles\": " << p.particles
+      << ", \"t_max\": " << json_number(p.t_max) << ", \"realisations\": " << c.sums.count()
+      << ", \"wall_seconds\": " << json_number(c.wall)
+      << ", \"t_c1\": " << json_number(c.fits.tc1.time)
+      << ", \"t_c1_theory_b\": " << json_number(c.fits.tc1_theory_b.time)
+      << ", \"t_c2\": " << json_number(c.fits.tc2.time)
+      << ", \"folder\": " << json_string("ensembles/" + c.plan->name) << "}"
+      << (k + 1 < results.size() ? "," : "") << "\n";
+  }
+  j << "  ],\n  \"comparisons\": " << comparisons_json(cmp) << ",\n  \"problems\": [";
+  for (std::size_t k = 0; k < problems.size(); ++k)
+    j << (k ? ", " : "") << json_string(problems[k]);
+  j << "]\n}\n";
+  write_file_atomic(dir / "summary.json", j.str());
+}
+
+void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,
+                          const std::vector<CaseResult>& results, const Crossovers& crossovers,
+                          const std::vector<Comparison>& cmp,
+                          const std::vector<std::string>& problems) {
+  std::ostringstream md;
+  md << "# grainshock figures (" << to_string(run.mode) << ")\n\n"
+     << "Jabeen, Rajesh, Ray, EPL 2010, reproduced by `grainshock figures --" << to_string(run.mode)
+     << " --threads " << run.threads << " --seed " << run.seed << "` in "
+     << figure_number(run.wall, 4) << " s wall (" << figure_number(run.simulation_wall, 4)
+     << " s of simulation).\n\n## Runs\n\n"
+     << "| case | d | r | delta | N | t_max (sim) | t_max (paper) | realisations | wall (s) | "
+        "t_c1 | t_c1 (b = theory) | t_c2 | R_front / (L/2) at t_max |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    md << "| " << c.plan->name << " | " << p.dim << " | " << format_number(p.restitution) << " | "
+       << format_number(p.cutoff) << " | " << p.particles << " | " << figure_number(p.t_max)
+       << " | " << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
+       << figure_number(c.wall, 3) << " | " << crossover_cell(c.fits.tc1) << " | "
+       << crossover_cell(c.fits.tc1_theory_b) << " | " << crossover_cell(c.fits.tc2) << " | "
+       << figure_number(front_reach(c), 2) << " |\n";
+  }
+  md << "\nt_c1: where the plateau law of <E_t> meets E_0 (intersection rule); t_c1 (b = "
+        "theory): the same with E_t's exponent fixed at the theory's; t_c2: the slope rule's "
+        "crossover of <N_t> (see Definitions; \"-\": not within "
+        "the run, the Notes say why). R_front / (L/2): how far the front (half the "
+        "ambient density) has come towards the nearest periodic image of the kicked site; the "
+        "plan keeps it below ~0.8 so that the front does not wrap.\n";
+  md << "\nEach case's averaged time series, distributions and fits are in `ensembles/<case>/` "
+        "(see its summary.json for the windows and intervals); each exponent's row links the "
+        "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
+     << comparisons_markdown(cmp) << "\n"
+     << local_phi1_markdown(crossovers) << "\n## Definitions\n\n"
+     << definitions_markdown() << "\n## Notes\n\n"
+     << crossover_notes(results);
+  for (const auto& p : problems) md << "- problem: " << p << "\n";
+  md << "\n## Files\n\n"
+        "- fig1a_overlay_r0.1.png: active particles of one 2D r = 0.1 realisation at four times "
+        "(Fig. 1a); fig1b_elastic_r1.png: 2D r = 1 (Fig. 1b).\n"
+        "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
+        "- fig3_active_energy: <N_t>, <E_t> in 2D and 3D with the theory's slopes (Fig. 3).\n"
+        "- fig4_collapse_2d, fig5_collapse_3d: scaled P(R,t), P(v,t) for r = 0.1 (Figs. 4, 5).\n"
+        "- fig6_crossover: t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits, by "
+        "the intersection rule (filled) and with b fixed at the theory's (open).\n"
+        "- fig7_tc2_delta: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 fit.\n"
+        "- fig8_local_slopes_<case>: local slopes of N_t, E_t, R_t, R_front, dR_front/dt and "
+        "C_t with bootstrap bands, theory lines and plateau fits (CSV beside).\n"
+        "- fig9_packing: active-weighted distribution of the cell packing in 2D.\n"
+        "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
+        "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
+        "theory, agrees}.\n"
+        "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
+  write_file_atomic(dir / "report.md", md.str());
+}
+
+}  // namespace gs::jobs
