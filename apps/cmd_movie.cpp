@@ -178,7 +178,7 @@ void add_movie_command(CLI::App& app) {
       if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
       return;
     }
-    if (sub->get_option("--dt")->count() > 0 || sub->get_option("--unwrap")->count() > 0)
+    if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
       throw UserError("--dt and --unwrap read stored snapshots; a simulated movie has none");
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);

@@ -155,12 +155,6 @@ void add_render_command(CLI::App& app) {
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
     for (const auto& path : o.inputs) snaps.push_back(read_snapshot(path, o.read, o.frame));
-    // What the readers assumed where the files say nothing, each sentence once.
-    std::set<std::string> said;
-    for (std::size_t k = 0; k < snaps.size(); ++k)
-      for (const auto& note : snaps[k].notes)
-        if (said.insert(note).second)
-          std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs[k].c_str(), note.c_str());
     // A run's own snapshot (it names its seed) is drawn as the run drew it: with the inset.
     st.inset = o.inset || (!o.no_inset && snaps.front().info.seed.has_value());
     // One snapshot is coloured by a field (several by time): the first file read decides what
@@ -171,6 +165,12 @@ void add_render_command(CLI::App& app) {
       st.scale = render::parse_scale(o.scale, st.field);
       render::check_style(st);
     }
+    // What the readers assumed where the files say nothing, each sentence once.
+    std::set<std::string> said;
+    for (std::size_t k = 0; k < snaps.size(); ++k)
+      for (const auto& note : snaps[k].notes)
+        if (said.insert(note).second)
+          std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs[k].c_str(), note.c_str());
     std::vector<const Snapshot*> ptrs;
     for (const auto& s : snaps) ptrs.push_back(&s);
 

@@ -1,5 +1,6 @@
 #include "io/xyz.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <exception>
@@ -363,6 +364,11 @@ void divide_by_element_masses(Snapshot& s, const std::vector<std::string_view>& 
     }
     if (m != 1) s.velocity[i] /= m;
   }
+  // Only X (ASE's dummy element, mass 1 there too, what we write): nothing was assumed.
+  if (!seen.empty() && std::all_of(seen.begin(), seen.end(), [](const auto& e) {
+        return e.first == "X" || e.first == "x" || e.first == "Z=0";
+      }))
+    return;
   std::string with, without;
   for (const auto& [name, m] : seen) {
     if (m == 1)

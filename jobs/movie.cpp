@@ -853,10 +853,6 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   m.frames.list();
   const Snapshot s = m.frames.read_frame(0);
   m.first_name = m.frames.name(0);
-  // What the reader assumed (masses, time from steps, wrapping), said once for the movie.
-  if (!o.quiet)
-    for (const auto& note : s.notes)
-      std::fprintf(stderr, "grainshock: %s: %s\n", m.first_name.c_str(), note.c_str());
   m.first_dim = s.info.dim;
   m.first_box = s.info.box;
   p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
@@ -866,6 +862,10 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   check_orbit(s.info.dim, o, m.first_name);
   settle_range(p.plan, s.info.dim);
   check_stored_frame(m, 0, s);
+  // What the reader assumed (masses, time from steps, wrapping), said once for the movie.
+  if (!o.quiet)
+    for (const auto& note : s.notes)
+      std::fprintf(stderr, "grainshock: %s: %s\n", m.first_name.c_str(), note.c_str());
   // A range that spans every frame needs them all first; that pass orders them too. Otherwise
   // the frames are drawn as given, each read once, while they prove to be in order of time.
   if (p.plan.need_range) order_frames(m);

@@ -165,6 +165,12 @@ TEST(ExtXyzFromOthers, MomentaWithoutMassesTakeTheElementsMass) {
   EXPECT_TRUE(z.info.has_time);
   EXPECT_EQ(z.info.time, 2.5);
 
+  // Ours (species X, ASE's mass 1 too) assume nothing: no note.
+  const Snapshot x = open_snapshots(MappedFile::from_bytes(
+      "x.xyz", "1\nProperties=species:S:1:pos:R:3:momenta:R:3 Time=1\nX 0 0 0 2 1 0\n")).read(0);
+  expect_near(x.velocity[0], {2, 1, 0});
+  EXPECT_TRUE(x.notes.empty()) << x.notes.front();
+
   // A masses column wins over the elements.
   const std::string with_masses =
       "1\nProperties=species:S:1:pos:R:3:masses:R:1:momenta:R:3\nAu 0 0 0 2 1 0 0\n";
