@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -124,7 +125,7 @@ FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMov
 
 struct StoredMovie::Impl {
   Impl(const std::vector<std::string>& files, const FrontMovieOptions& o)
-      : frames(files), options(o) {}
+      : frames(files, o.read), options(o) {}
   StoredFrames frames;
   Prepared prepared;
   FrontMovieOptions options;
@@ -224,6 +225,10 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   check_orbit(s.info.dim, o, m.first_name);
   settle_range(p.plan, s.info.dim);
   check_stored_frame(m, 0, s);
+  // What the reader assumed (masses, time from steps, wrapping), said once for the movie.
+  if (!o.quiet)
+    for (const auto& note : s.notes)
+      std::fprintf(stderr, "grainshock: %s: %s\n", m.first_name.c_str(), note.c_str());
   // A range that spans every frame needs them all first; that pass orders them too. Otherwise
   // the frames are drawn as given, each read once, while they prove to be in order of time.
   if (p.plan.need_range) order_frames(m);

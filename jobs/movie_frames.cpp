@@ -71,7 +71,7 @@ bool LiveFrames::each(ProgressLine& progress, const char* pass,
 
 void StoredFrames::list() {
   for (std::size_t file = 0; file < paths_.size(); ++file) {
-    const std::size_t n = open_snapshots(paths_[file]).frame_count();
+    const std::size_t n = open_snapshots(paths_[file], read_).frame_count();
     if (n == 0) throw UserError("snapshot '" + paths_[file] + "' holds no frame");
     counts_.push_back(n);
     for (std::size_t j = 0; j < n; ++j) entries_.push_back({file, j});
@@ -85,7 +85,7 @@ std::string StoredFrames::name(std::size_t k) const {
 }
 
 Snapshot StoredFrames::read_frame(std::size_t k) const {
-  return read(open_snapshots(paths_[entries_[k].file]), entries_[k].frame);
+  return read(open_snapshots(paths_[entries_[k].file], read_), entries_[k].frame);
 }
 
 void StoredFrames::reorder(const std::vector<std::size_t>& order) {
@@ -116,7 +116,7 @@ bool StoredFrames::each(ProgressLine& progress, const char* pass,
   };
   // A file's frames as list() counted them: a file that changed since reads as an error.
   auto open = [&](std::size_t file) {
-    SnapshotFile f = open_snapshots(paths_[file]);
+    SnapshotFile f = open_snapshots(paths_[file], read_);
     if (f.frame_count() != counts_[file])
       throw UserError("snapshot '" + paths_[file] + "' changed while the movie was made: it had " +
                       std::to_string(counts_[file]) + " frames, it has " +

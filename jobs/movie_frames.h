@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/snapshot_file.h"
 #include "jobs/progress.h"
 #include "sim/config.h"
 #include "sim/engine.h"
@@ -66,7 +67,8 @@ class LiveFrames final : public Frames {
 // frames after it.
 class StoredFrames final : public Frames {
  public:
-  explicit StoredFrames(std::vector<std::string> paths) : paths_(std::move(paths)) {}
+  StoredFrames(std::vector<std::string> paths, const ReadOptions& read)
+      : paths_(std::move(paths)), read_(read) {}
   std::size_t size() const override { return entries_.size(); }
   // UserError naming a file that cannot be opened or holds no frame.
   void list();
@@ -83,6 +85,7 @@ class StoredFrames final : public Frames {
     std::size_t file, frame;
   };
   std::vector<std::string> paths_;
+  ReadOptions read_;
   std::vector<Entry> entries_;       // frame k of the movie is frame entries_[k].frame of a file
   std::vector<std::size_t> counts_;  // frames in each file
 };

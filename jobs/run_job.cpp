@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/output_dir.h"
 #include "io/snapshot_file.h"
+#include "io/trajectory.h"
 #include "jobs/movie.h"
 #include "jobs/progress.h"
 #include "render/field.h"
@@ -184,6 +185,16 @@ bool write_elastic_comparison(const fs::path& dir, const RunOptions& o) {
   return true;
 }
 
+// Every snapshot time in one file, read back from the snapshot files (so that a resumed run
+// writes the same trajectory).
+void write_trajectory(const fs::path& dir, const RunOptions& o) {
+  const auto out = open_trajectory((dir / o.trajectory).string(), trajectory_format(o.trajectory));
+  for (double t : snapshot_times(o.plan))
+    out->add(
+        read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
+  out->finish();
+}
+
 bool finished_run(const fs::path& dir) {
   std::ifstream f(dir / "summary.json");
   std::stringstream text;
@@ -210,6 +221,7 @@ std::string run_toml(const RunOptions& o) {
     << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
     << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
     << "snapshot-times = " << times_toml(o.plan.snapshot_times) << "\n"
+    << "trajectory = \"" << o.trajectory << "\"\n"
     << "png = " << (o.png ? "true" : "false") << "\n"
     << "compare-elastic = " << (o.compare_elastic ? "true" : "false") << "\n"
     << "movie = " << (o.movie ? "true" : "false") << "\n"
@@ -221,6 +233,8 @@ std::string run_toml(const RunOptions& o) {
 
 RunResult run_job(const RunOptions& o, bool resume) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
+  if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
+    throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;
@@ -259,7 +273,9 @@ RunResult run_job(const RunOptions& o, bool resume) {
     if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
       fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
   } else {
-    dir = prepare_output_dir(o.out, o.force, kRunOutputs);
+    std::vector<const char*> replaced(std::begin(kRunOutputs), std::end(kRunOutputs));
+    if (!o.trajectory.empty()) replaced.push_back(o.trajectory.c_str());
+    dir = prepare_output_dir(o.out, o.force, replaced);
     lock_output_dir(dir);
     remove_leftovers(dir);
     write_file_atomic(dir / "run.toml", spec);
@@ -294,6 +310,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
     }
   }
   const auto t2 = std::chrono::steady_clock::now();
+  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
   if (!stopped && o.png) stopped = !write_pictures(dir, o);
   if (!stopped && o.compare_elastic) stopped = !write_elastic_comparison(dir, o);
   if (!stopped && o.movie) {
