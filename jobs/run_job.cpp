@@ -221,13 +221,13 @@ std::string run_toml(const RunOptions& o) {
     << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
     << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
     << "snapshot-times = " << times_toml(o.plan.snapshot_times) << "\n"
-    << "trajectory = \"" << o.trajectory << "\"\n"
     << "png = " << (o.png ? "true" : "false") << "\n"
     << "compare-elastic = " << (o.compare_elastic ? "true" : "false") << "\n"
     << "movie = " << (o.movie ? "true" : "false") << "\n"
     << "movie-inset = " << (o.movie_inset ? "true" : "false") << "\n"
     << "width = " << o.width << "\n"
-    << "height = " << o.height << "\n";
+    << "height = " << o.height << "\n"
+    << "trajectory = \"" << o.trajectory << "\"\n";
   return t.str();
 }
 

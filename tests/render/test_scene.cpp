@@ -122,7 +122,7 @@ TEST(Scene, TheKickedParticleIsDrawnBeforeTheFirstCollision) {
 }
 
 TEST(Scene, ScaledRadialVelocityIsRelativeToTheDrift) {
-  Snapshot s = ring(2, 1);
+  Snapshot s = ring(1, 1);
   for (std::size_t i = 0; i < s.size(); ++i)
     if (s.active[i]) s.velocity[i] += Eigen::Vector3d(0.5, 0, 0);  // a common drift
   const auto v = field_values(s, Field::ScaledRadialVelocity);
