@@ -59,6 +59,33 @@ std::string local_phi1_markdown(const Crossovers& crossovers) {
   return md.str();
 }
 
+// Every exponent of every case with its plateau and the local slope's drift across it.
+std::string plateau_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "### Plateaus and their drift\n\n"
+        "Every fitted exponent's window (the plateau rule in Definitions), the mean local slope "
+        "over it, and its drift D (last third minus first third) and curvature K with their "
+        "bootstrap standard deviations; a window is a plateau only where |D|, |K| <= 2 sigma "
+        "(+ 1e-3).\n\n"
+        "| case | quantity | window (sim t) | fitted exponent | theory | drift D | sigma_D | "
+        "curvature K | sigma_K |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results)
+    for (const auto& e : c.fits.exponents) {
+      md << "| " << c.plan->name << " | " << e.quantity << " | ";
+      if (!e.plateau.found) {
+        md << "no plateau | - | " << figure_number(e.theory, 3) << " | - | - | - | - |\n";
+        continue;
+      }
+      md << "[" << figure_number(e.plateau.window.t_lo, 3) << ", "
+         << figure_number(e.plateau.window.t_hi, 3) << "] | " << figure_number(e.fit.exponent, 4)
+         << " | " << figure_number(e.theory, 3) << " | " << figure_number(e.plateau.drift, 2)
+         << " | " << figure_number(e.plateau.drift_error, 2) << " | "
+         << figure_number(e.plateau.curvature, 2) << " | "
+         << figure_number(e.plateau.curvature_error, 2) << " |\n";
+    }
+  return md.str();
+}
+
 }  // namespace
 
 void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
@@ -100,7 +127,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << "Jabeen, Rajesh, Ray, EPL 2010, reproduced by `grainshock figures --" << to_string(run.mode)
      << " --threads " << run.threads << " --seed " << run.seed << "` in "
      << figure_number(run.wall, 4) << " s wall (" << figure_number(run.simulation_wall, 4)
-     << " s of simulation).\n\n## Runs\n\n"
+     << " s of simulation).\n\n## Summary\n\n"
+     << comparison_summary_markdown(cmp) << "\n## Runs\n\n"
      << "| case | d | r | delta | N | t_max (sim) | t_max (paper) | realisations | wall (s) | "
         "t_c1 | t_c1 (b = theory) | t_c2 | R_front / (L/2) at t_max |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -123,6 +151,9 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "(see its summary.json for the windows and intervals); each exponent's row links the "
         "local-slope figure it was read from.\n\n## Measured against the paper\n\n"
      << comparisons_markdown(cmp) << "\n"
+     << "### Sensitivity: other readings of the paper's numbers (not counted)\n\n"
+     << sensitivity_markdown(cmp) << "\n"
+     << plateau_markdown(results) << "\n"
      << local_phi1_markdown(crossovers) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
      << crossover_notes(results);

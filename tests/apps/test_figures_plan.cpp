@@ -80,5 +80,26 @@ TEST(FiguresPlan, FullRunsTheLargeElasticBlast) {
   EXPECT_GE(p.t_max, 2e4);
 }
 
+TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
+  // Issue 33: at delta = 1e-4 the 2D N_t slope drifts into the delta crossover before t_max;
+  // every r < 1 paper case runs with delta <= 1e-6; the delta scan keeps its larger cutoffs.
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    const FiguresPlan plan = figures_plan(m, 1);
+    for (const FigureCase* c : of_role(plan, CaseRole::Paper))
+      if (c->spec.physics.restitution < 1) EXPECT_LE(c->spec.physics.cutoff, 1e-6) << c->name;
+    for (const FigureCase* c : of_role(plan, CaseRole::DeltaScan))
+      EXPECT_GE(c->spec.physics.cutoff, 1e-4) << c->name;
+    EXPECT_TRUE(of_role(plan, CaseRole::Long3D).empty());
+    const auto with = of_role(figures_plan(m, 1, true), CaseRole::Long3D);
+    ASSERT_EQ(with.size(), 2u);
+    for (const FigureCase* c : with) {
+      EXPECT_EQ(c->spec.physics.dim, 3);
+      EXPECT_LE(c->spec.physics.cutoff, 1e-6);
+      EXPECT_GE(c->spec.physics.t_max, 1e6);
+      EXPECT_GE(c->spec.realisations, 16u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gs::app
