@@ -205,4 +205,76 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
   return p;
 }
 
+namespace {
+
+struct SlopeModel {
+  double b, k, omega, residual;
+};
+
+// s = b + k t^-omega by least squares over the samples `use`, for each omega of the grid.
+SlopeModel fit_slope_model(const std::vector<double>& t, const std::vector<double>& s,
+                           const std::vector<std::size_t>& use) {
+  SlopeModel best{0, 0, 0, std::numeric_limits<double>::infinity()};
+  for (int w = 2; w <= 40; ++w) {
+    const double omega = 0.05 * w;
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i : use) {
+      const double x = std::pow(t[i], -omega);
+      n += 1;
+      sx += x;
+      sy += s[i];
+      sxx += x * x;
+      sxy += x * s[i];
+    }
+    const double det = n * sxx - sx * sx;
+    if (!(det > 0)) continue;
+    const double k = (n * sxy - sx * sy) / det, b = (sy - k * sx) / n;
+    double res = 0;
+    for (std::size_t i : use) {
+      const double e = s[i] - b - k * std::pow(t[i], -omega);
+      res += e * e;
+    }
+    if (res < best.residual) best = {b, k, omega, res};
+  }
+  return best;
+}
+
+}  // namespace
+
+CorrectedExponent corrected_exponent(const SlopeBand& band, double t_lo, double t_hi,
+                                     double confidence) {
+  CorrectedExponent out;
+  std::vector<std::size_t> use;
+  for (std::size_t i = 0; i < band.t.size(); ++i)
+    if (band.t[i] >= t_lo && band.t[i] <= t_hi && std::isfinite(band.slope[i]) &&
+        std::isfinite(band.lo[i]))
+      use.push_back(i);
+  if (use.size() < 6) {
+    out.note = "fewer than 6 usable local slopes";
+    return out;
+  }
+  const SlopeModel m = fit_slope_model(band.t, band.slope, use);
+  if (!std::isfinite(m.residual)) {
+    out.note = "no fit";
+    return out;
+  }
+  out.found = true;
+  out.b = m.b;
+  out.k = m.k;
+  out.omega = m.omega;
+  out.window = {band.t[use.front()], band.t[use.back()]};
+  if (m.omega <= 0.1 + 1e-9 || m.omega >= 2 - 1e-9)
+    out.note = "omega at the edge of its grid [0.1, 2]";
+  std::vector<double> bs;
+  for (const auto& d : band.draws) {
+    const SlopeModel md = fit_slope_model(band.t, d, use);
+    if (std::isfinite(md.residual)) bs.push_back(md.b);
+  }
+  if (bs.size() >= 10) {
+    out.ci_lo = quantile(bs, (1 - confidence) / 2);
+    out.ci_hi = quantile(bs, (1 + confidence) / 2);
+  }
+  return out;
+}
+
 }  // namespace gs

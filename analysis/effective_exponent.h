@@ -70,4 +70,23 @@ struct Plateau {
 };
 Plateau find_plateau(const SlopeBand& band, const PlateauOptions& options = {});
 
+// The exponent with a correction to scaling, X = t^b (1 + c t^-omega) to first order: the local
+// slope fitted as s(t) = b + k t^-omega over the usable samples of [t_lo, t_hi], b and k by
+// least squares for each omega of the grid 0.1, 0.15, ..., 2, the omega of least squared
+// residual kept (an omega at the grid's edge is reported as such). Interval: the same fit of
+// every resampled slope (percentiles). Shows whether a plateau exponent short of the theory is
+// a finite-time correction (b moves towards the theory) or not (b stays).
+struct CorrectedExponent {
+  bool found = false;
+  double b = std::numeric_limits<double>::quiet_NaN();
+  double k = std::numeric_limits<double>::quiet_NaN();
+  double omega = std::numeric_limits<double>::quiet_NaN();
+  double ci_lo = std::numeric_limits<double>::quiet_NaN();
+  double ci_hi = std::numeric_limits<double>::quiet_NaN();
+  Window window;
+  std::string note;
+};
+CorrectedExponent corrected_exponent(const SlopeBand& band, double t_lo, double t_hi,
+                                     double confidence = 0.95);
+
 }  // namespace gs

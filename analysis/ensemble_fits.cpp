@@ -136,6 +136,7 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
     e.slope = local_slope_band(t, curves, so);
     PlateauOptions po = o.plateau;
     po.t_min = std::max(po.t_min, t_start);
+    e.corrected = corrected_exponent(e.slope, std::max(t_start, t.back() / 100), t.back());
     Window w;
     if (o.window) {
       PlateauOptions inside = po;

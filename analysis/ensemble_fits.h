@@ -52,6 +52,9 @@ struct ExponentFit {
   SlopeBand slope;
   Plateau plateau;
   PowerLawFit fit;  // NaN exponent when there is no plateau
+  // The local slope over its last two decades (after <N_t> >= 20) fitted with a correction to
+  // scaling, s = b + k t^-omega (effective_exponent.h).
+  CorrectedExponent corrected;
   // alpha implied by the exponent and its interval (half width of the bootstrap interval, or the
   // least-squares error for a single realisation); NaN for the collision count.
   double alpha = std::numeric_limits<double>::quiet_NaN();

@@ -198,6 +198,10 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
       << ", \"plateau_drift_error\": " << json_number(e.plateau.drift_error)
       << ", \"plateau_curvature\": " << json_number(e.plateau.curvature)
       << ", \"plateau_curvature_error\": " << json_number(e.plateau.curvature_error)
+      << ", \"corrected_exponent\": " << json_number(e.corrected.b)
+      << ", \"corrected_ci\": [" << json_number(e.corrected.ci_lo) << ", "
+      << json_number(e.corrected.ci_hi) << "], \"corrected_omega\": "
+      << json_number(e.corrected.omega)
       << ", \"alpha\": " << json_number(e.alpha)
       << ", \"alpha_uncertainty\": " << json_number(e.alpha_uncertainty)
       << ", \"note\": " << json_string(e.note) << "}" << (k + 1 < f.exponents.size() ? "," : "")

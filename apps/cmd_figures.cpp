@@ -99,7 +99,8 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
     << ",\n  \"estimated_wall_seconds\": " << json_number(total) << "\n}\n";
   write_file_atomic(dir / "estimate.json", j.str());
   std::ostringstream md;
-  md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode) << "`\n\n"
+  md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode)
+     << (o.long_3d ? " --long" : "") << "`\n\n"
      << "From " << o.sample << " realisations per case run on " << o.threads
      << " threads, scaled to the plan's realisation counts (the renderer and plots add "
         "seconds).\n\n"
