@@ -37,7 +37,7 @@ double since(Clock::time_point t0) {
 }
 
 struct FiguresOptions {
-  bool quick = false, full = false, tiny = false, estimate = false;
+  bool quick = false, full = false, tiny = false, estimate = false, long_3d = false;
   std::string out = "grainshock-figures";
   bool force = false, quiet = false;
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -103,7 +103,8 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
     << ",\n  \"estimated_wall_seconds\": " << json_number(total) << "\n}\n";
   write_file_atomic(dir / "estimate.json", j.str());
   std::ostringstream md;
-  md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode) << "`\n\n"
+  md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode)
+     << (o.long_3d ? " --long" : "") << "`\n\n"
      << "From " << o.sample << " realisations per case run on " << o.threads
      << " threads, scaled to the plan's realisation counts (the renderer and plots add "
         "seconds).\n\n"
@@ -122,7 +123,7 @@ void run(const FiguresOptions& o) {
   if (o.threads < 1) throw UserError("--threads must be at least 1");
   if (o.sample < 1) throw UserError("--sample must be at least 1");
   const std::vector<std::string> formats = parse_plot_formats(o.format);
-  const FiguresPlan plan = figures_plan(mode, o.seed);
+  const FiguresPlan plan = figures_plan(mode, o.seed, o.long_3d);
   const auto dir = prepare_output_dir(o.out, o.force);
   install_stop_handlers();
   if (o.estimate) return estimate(o, plan, dir);
@@ -187,6 +188,9 @@ void add_figures_command(CLI::App& app) {
                 "The paper's sizes (2.5e5 discs, 2e6 spheres) with 12-48 realisations per "
                 "case, and the 3D elastic blast at 4e6 spheres: < 30 min on 2 cores (see "
                 "--estimate)");
+  sub->add_flag("--long", opt->long_3d,
+                "Add the long 3D runs (r = 0.1, 0.5; 4e6 spheres, delta = 1e-6, to t = 1e6, 16 "
+                "realisations each): about an hour on 2 cores; see --long --estimate");
   sub->add_flag("--tiny", opt->tiny,
                 "Seconds-long smoke run (tests): every file, meaningless numbers");
   sub->add_flag(
