@@ -150,7 +150,7 @@ void run(const FiguresOptions& o) {
     const auto edir = dir / "ensembles" / c.name;
     fs::create_directories(edir);
     CaseResult cr{&c, std::move(r.sums), {}, since(tc)};
-    cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
+    cr.fits = jobs::write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
     if (!c.delta_scan) {
       const auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
       cmp.insert(cmp.end(), more.begin(), more.end());
