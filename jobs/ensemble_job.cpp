@@ -19,6 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What a rank other than 0 ends with: the exit code rank 0 gives it.
+EnsembleResult served(Ranks& ranks) {
+  EnsembleResult r;
+  r.served = serve_ensemble(ranks);
+  return r;
+}
+
 // Runs what the folder's job still lacks (all of it for a new folder) and writes the results.
 EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads, bool quiet,
                        const ProgressFactory& progress_factory, Ranks& ranks) {
@@ -89,7 +96,7 @@ FitOptions fit_options(int resamples, const std::vector<double>& window, const E
 
 EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   Ranks& ranks = Ranks::world();
-  if (ranks.rank() != 0) return {.served = serve_ensemble(ranks)};
+  if (ranks.rank() != 0) return served(ranks);
   // Every check before the output folder is touched: bad input leaves nothing behind.
   if (o.realisations < 1) throw UserError("--realisations must be at least 1");
   if (o.threads < 1) throw UserError("--threads must be at least 1");
@@ -137,7 +144,7 @@ bool holds_unfinished_ensemble(const fs::path& dir) {
 EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
                                const ProgressFactory& progress) {
   Ranks& ranks = Ranks::world();
-  if (ranks.rank() != 0) return {.served = serve_ensemble(ranks)};
+  if (ranks.rank() != 0) return served(ranks);
   if (threads < 1) throw UserError("--threads must be at least 1");
   std::error_code ec;
   if (!fs::is_regular_file(dir / "ensemble.toml", ec))
