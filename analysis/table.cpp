@@ -5,7 +5,7 @@
 #include <sstream>
 #include <utility>
 
-#include "sim/atomic_file.h"
+#include "io/atomic_file.h"
 #include "sim/error.h"
 #include "sim/format.h"
 

@@ -7,7 +7,6 @@
 #include <string>
 #include <string_view>
 
-#include "sim/atomic_file.h"
 #include "sim/config.h"
 
 namespace gs::app {
@@ -32,20 +31,5 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c);
 // --out DIR, --force and --quiet of every command that writes a folder; returns --out so a
 // command without a default folder can make it required.
 CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bool& quiet);
-
-// Creates `dir` for a new run. An existing non-empty folder is refused unless `force`. With it,
-// the names in `replaced` (the files and folders the command writes) are removed first, so
-// that the folder never mixes two runs, even if the new one is killed early; anything else in
-// the folder is left alone.
-std::filesystem::path prepare_output_dir(const std::string& dir, bool force,
-                                         std::span<const char* const> replaced = {});
-
-// Holds an exclusive lock on `dir` until the process ends (flock on the folder itself, so that
-// nothing is added to it): a second run or resume into the same folder is refused.
-void lock_output_dir(const std::filesystem::path& dir);
-
-// Removes what killed writers left in `dir` and its snapshots/ and frames/: temporaries of
-// atomic writes (NAME.tmp.PID, sim/atomic_file.h) and of movies (.NAME.PID.partial).
-void remove_leftovers(const std::filesystem::path& dir);
 
 }  // namespace gs::app

@@ -8,6 +8,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "bench/bench.h"
+#include "io/atomic_file.h"
 #include "sim/error.h"
 
 namespace gs::app {

@@ -1,7 +1,7 @@
 // `grainshock movie`: runs one realisation and streams frames of the spreading front into
 // DIR/movie.mp4 beside movie.toml (every setting, for --config), with checkpoints that
 // `grainshock resume DIR` goes on from, or, given snapshot files, draws them in order of their
-// time into DIR/movie.mp4 (see apps/front_movie.h).
+// time into DIR/movie.mp4 (see jobs/movie.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdlib>
@@ -14,12 +14,17 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/exit_code.h"
-#include "apps/front_movie.h"
+#include "apps/progress.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
+#include "jobs/movie.h"
 #include "sim/config.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 
 namespace gs::app {
+
+using namespace jobs;
 namespace {
 
 // What a movie writes into its folder; --force removes these first, so that a folder never
@@ -117,6 +122,14 @@ void add_movie_flags(CLI::App& sub, MovieJob& job) {
       ->capture_default_str();
   sub.add_flag("--keep-frames", job.movie.keep_frames,
                "Also write every frame as DIR/frames/*.png");
+  sub.add_option("--dt", job.movie.read.dt,
+                 "Stored snapshots: time step of files that give steps but no time (LAMMPS dumps "
+                 "without ITEM: TIME, HOOMD GSD): time = step x DT; without it frames are "
+                 "labelled by step")
+      ->check(CLI::PositiveNumber);
+  sub.add_flag("--unwrap", job.movie.read.unwrap,
+               "Stored LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
+               "flags) instead of the positions in the cell, which OVITO draws by default");
   sub.add_option("--gl", job.movie.backend, "OpenGL context: auto, osmesa or egl")
       ->capture_default_str();
 }
@@ -136,6 +149,7 @@ void add_movie_command(CLI::App& app) {
       "parts into one movie.mp4 without encoding again. A stopped movie also leaves a playable "
       "movie.mp4 of its frames so far.");
   sub->callback([opt, sub] {
+    opt->movie.progress = terminal_progress(opt->movie.quiet);
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
@@ -164,6 +178,8 @@ void add_movie_command(CLI::App& app) {
       if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
       return;
     }
+    if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
+      throw UserError("--dt and --unwrap read stored snapshots; a simulated movie has none");
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);
@@ -201,6 +217,7 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
                     file.string() + " --out " + dir.string() + " --force");
   validate(job.physics);
   job.movie.quiet = quiet;
+  job.movie.progress = terminal_progress(quiet);
   lock_output_dir(dir);
   remove_leftovers(dir);
   const MovieCheckpoints checkpoints{text.str(), checkpoint_every};

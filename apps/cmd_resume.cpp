@@ -1,6 +1,6 @@
-// `grainshock resume DIR`: continues a run folder from its last checkpoint (apps/run_job.h), a
-// movie folder from its (apps/front_movie.h), or an unfinished ensemble folder from its finished
-// realisations (apps/ensemble_cli.h).
+// `grainshock resume DIR`: continues a run folder from its last checkpoint (jobs/run_job.h), a
+// movie folder from its (jobs/movie.h), or an unfinished ensemble folder from its finished
+// realisations (jobs/ensemble_job.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -10,9 +10,12 @@
 #include "apps/commands.h"
 #include "apps/ensemble_cli.h"
 #include "apps/exit_code.h"
-#include "apps/run_job.h"
+#include "apps/progress.h"
+#include "apps/run_flags.h"
 
 namespace gs::app {
+
+using namespace jobs;
 
 void add_resume_command(CLI::App& app) {
   struct Options {
@@ -26,7 +29,8 @@ void add_resume_command(CLI::App& app) {
       "resume",
       "Continue a run or movie folder from its last checkpoint, or an unfinished ensemble "
       "folder, after Ctrl-C or a kill");
-  sub->add_option("DIR", opt->dir, "The run, movie or ensemble folder (as given to --out)")->required();
+  sub->add_option("DIR", opt->dir, "The run, movie or ensemble folder (as given to --out)")
+      ->required();
   sub->add_flag("--quiet", opt->quiet, "Nothing on stderr but errors");
   add_checkpoint_option(*sub, opt->checkpoint_every);
   sub->add_option("--threads", opt->threads, "Ensemble folders: worker threads")
@@ -48,7 +52,7 @@ void add_resume_command(CLI::App& app) {
       return;
     }
     if (std::filesystem::exists(dir / "ensemble.toml")) {
-      const int rc = resume_ensemble(dir, opt->threads, opt->quiet);
+      const int rc = resume_ensemble_command(dir, opt->threads, opt->quiet);
       if (rc != 0) throw Exit{rc};
       return;
     }
@@ -56,8 +60,8 @@ void add_resume_command(CLI::App& app) {
     o.out = opt->dir;
     o.quiet = opt->quiet;
     o.checkpoint_every = opt->checkpoint_every;
-    const int rc = run_job(o, true);
-    if (rc != 0) throw Exit{rc};
+    o.progress = terminal_progress(o.quiet);
+    if (run_job(o, true).stopped) throw Exit{kExitInterrupted};
   });
 }
 

@@ -1,13 +1,16 @@
-// `grainshock run`: one realisation into a run folder (apps/run_job.h).
+// `grainshock run`: one realisation into a run folder (jobs/run_job.h).
 #include <CLI/CLI.hpp>
 #include <memory>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/exit_code.h"
-#include "apps/run_job.h"
+#include "apps/progress.h"
+#include "apps/run_flags.h"
 
 namespace gs::app {
+
+using namespace jobs;
 
 void add_checkpoint_option(CLI::App& sub, double& every) {
   sub.add_option("--checkpoint-every", every,
@@ -33,8 +36,8 @@ void add_run_command(CLI::App& app) {
       "writes the same files.");
   sub->callback([opt, sub] {
     apply_fig1_rule(*sub, *opt);
-    const int rc = run_job(*opt, false);
-    if (rc != 0) throw Exit{rc};
+    opt->progress = terminal_progress(opt->quiet);
+    if (run_job(*opt, false).stopped) throw Exit{kExitInterrupted};
   });
 }
 

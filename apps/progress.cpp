@@ -98,4 +98,8 @@ void Progress::done() {
   if (printed_ && tty_) std::fprintf(stderr, "\n");
 }
 
+jobs::ProgressFactory terminal_progress(bool quiet) {
+  return [quiet] { return std::make_unique<Progress>(quiet); };
+}
+
 }  // namespace gs::app

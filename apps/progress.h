@@ -17,19 +17,21 @@
 #include <thread>
 #include <utility>
 
+#include "jobs/progress.h"
+
 namespace gs::app {
 
-class Progress {
+class Progress final : public jobs::ProgressLine {
  public:
   explicit Progress(bool quiet);
-  ~Progress();
+  ~Progress() override;
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
   // `fraction` in [0, 1] of the work; `what` is the rest of the line. Cheap: only records.
-  void update(double fraction, const std::string& what);
+  void update(double fraction, const std::string& what) override;
   // Stops the ticker and ends a live line. Idempotent.
-  void done();
+  void done() override;
 
   // Seconds left after `wall` seconds, from progress `fraction` at `wall` and `ref_fraction` at
   // `ref_wall` < `wall` (beta as above; ref_fraction = 0 means the linear estimate from the
@@ -51,5 +53,8 @@ class Progress {
   std::deque<std::pair<double, double>> history_;  // (wall, fraction), geometrically spaced
   std::thread ticker_;
 };
+
+// The factory that gives every pass of a job its own terminal line (none when quiet).
+jobs::ProgressFactory terminal_progress(bool quiet);
 
 }  // namespace gs::app

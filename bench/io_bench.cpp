@@ -9,14 +9,14 @@
 #include <random>
 
 #include "bench/bench.h"
+#include "io/atomic_file.h"
+#include "io/gsd.h"
+#include "io/snapshot_file.h"
+#include "io/snapshot_writer.h"
+#include "io/xyz.h"
 #include "render/field.h"
 #include "render/renderer.h"
-#include "sim/atomic_file.h"
 #include "sim/error.h"
-#include "sim/gsd.h"
-#include "sim/snapshot_file.h"
-#include "sim/snapshot_writer.h"
-#include "sim/xyz.h"
 
 namespace gs::bench {
 namespace {
@@ -118,7 +118,7 @@ std::vector<Figure> read_case(const fs::path& path, const std::string& target) {
           {"particles", static_cast<double>(n), "", "2.5e5"}};
 }
 
-// As `run` writes a snapshot (sim/snapshot_writer.h), the filtering of active_only included.
+// As `run` writes a snapshot (io/snapshot_writer.h), the filtering of active_only included.
 std::vector<Figure> write_case(const Snapshot& s, bool gsd, bool active_only) {
   SnapshotWriteOptions options;
   options.format = gsd ? SnapshotFormat::Gsd : SnapshotFormat::Xyz;

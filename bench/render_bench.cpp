@@ -18,11 +18,11 @@
 #include <sys/wait.h>
 
 #include "bench/bench.h"
+#include "io/xyz.h"
 #include "render/colormap.h"
 #include "render/movie_writer.h"
 #include "render/png.h"
 #include "render/renderer.h"
-#include "sim/xyz.h"
 
 namespace gs::bench {
 namespace {

@@ -7,10 +7,13 @@
 #include <string>
 
 #include "bench/bench.h"
-#include "sim/checkpoint.h"
-#include "sim/run_loop.h"
+#include "io/checkpoint.h"
+#include "jobs/run_loop.h"
 
 namespace gs::bench {
+using jobs::RunLoop;
+using jobs::RunPlan;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -32,7 +35,7 @@ RunPlan kick_plan(std::int64_t n) {
   return plan;
 }
 
-// The run loop of `grainshock run` (sim/run_loop.h) at N = 2e5 and 2e6: 3D, r = 0.5, to
+// The run loop of `grainshock run` (jobs/run_loop.h) at N = 2e5 and 2e6: 3D, r = 0.5, to
 // t = 2e4, where both blasts are still inside their boxes (sim/kick3d_scaling). Particles at
 // rest must cost nothing in the loop either, so the cost per collision should barely grow with
 // N. Set-up (the initial state and first checkpoint) is left out, and so is the final snapshot
@@ -88,7 +91,7 @@ std::vector<Figure> checkpoint_2e6() {
   const double read = wall_seconds() - r0;
   const double same = resumed->simulation().stats().events == loop.simulation().stats().events;
   fs::remove_all(dir);
-  // The run waits `write_seconds`; the sync to disk goes on beside it (sim/run_loop.h).
+  // The run waits `write_seconds`; the sync to disk goes on beside it (jobs/run_loop.h).
   return {{"write_seconds", write, "s", "< 1 s"},
           {"on_disk_seconds", durable, "s", ""},
           {"read_seconds", read, "s", "< 1 s"},

@@ -1,13 +1,13 @@
 # `cmake --install`: the grainshock program, the libraries with their headers, a CMake package
-# (find_package(grainshock): grainshock::sim, grainshock::analysis, grainshock::render,
-# grainshock::movie) and a pkg-config file. The package is relocatable: it finds itself and its
+# (find_package(grainshock): grainshock::sim, grainshock::io, grainshock::analysis,
+# grainshock::render, grainshock::movie) and a pkg-config file. The package is relocatable: it finds itself and its
 # headers relative to where it was installed.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(GRAINSHOCK_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/grainshock)
 set(GRAINSHOCK_INCLUDE_DIR ${CMAKE_INSTALL_INCLUDEDIR}/grainshock)
-set(_libs grainshock_sim grainshock_analysis grainshock_render grainshock_movie)
+set(_libs grainshock_sim grainshock_io grainshock_analysis grainshock_render grainshock_movie)
 foreach(lib ${_libs})
   string(REPLACE "grainshock_" "" short ${lib})
   set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})
@@ -19,7 +19,7 @@ install(TARGETS ${_libs} EXPORT grainshockTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # Headers keep their folders, as the sources include them: #include "sim/engine.h".
-install(DIRECTORY sim render analysis DESTINATION ${GRAINSHOCK_INCLUDE_DIR}
+install(DIRECTORY sim io analysis render DESTINATION ${GRAINSHOCK_INCLUDE_DIR}
         FILES_MATCHING PATTERN "*.h")
 install(EXPORT grainshockTargets NAMESPACE grainshock:: DESTINATION ${GRAINSHOCK_CMAKE_DIR})
 
@@ -50,7 +50,8 @@ if(_opts)
 endif()
 get_target_property(_link grainshock_sim INTERFACE_LINK_OPTIONS)
 set(GRAINSHOCK_PC_LIBS
-    "-lgrainshock_render -lgrainshock_movie -lgrainshock_analysis -lgrainshock_sim -pthread")
+    "-lgrainshock_render -lgrainshock_movie -lgrainshock_analysis -lgrainshock_io -lgrainshock_sim
+     -pthread")
 if(_link)
   list(JOIN _link " " _joined)
   string(APPEND GRAINSHOCK_PC_LIBS " ${_joined}")

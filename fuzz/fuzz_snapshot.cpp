@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <string>
 
+#include "io/gsd.h"
+#include "io/lammps_dump.h"
+#include "io/snapshot_file.h"
+#include "io/xyz.h"
 #include "sim/error.h"
-#include "sim/gsd.h"
-#include "sim/lammps_dump.h"
-#include "sim/snapshot_file.h"
-#include "sim/xyz.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   gs::MappedFile file =

@@ -12,8 +12,8 @@ shift || true
 formats=("$@")
 [ ${#formats[@]} -gt 0 ] || formats=(xyz lammps gsd)
 mkdir -p "$out"
-srcs=(sim/mapped_file.cpp sim/text_scan.cpp sim/xyz.cpp sim/lammps_dump.cpp sim/gsd.cpp
-      sim/snapshot_file.cpp sim/error.cpp sim/atomic_file.cpp)
+srcs=(io/mapped_file.cpp io/text_scan.cpp io/xyz.cpp io/lammps_dump.cpp io/gsd.cpp
+      io/snapshot_file.cpp sim/error.cpp io/atomic_file.cpp)
 status=0
 for name in "${formats[@]}"; do
   case $name in

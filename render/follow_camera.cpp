@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sim/checkpoint.h"
+#include "sim/state_stream.h"
 
 namespace gs::render {
 
@@ -29,12 +29,12 @@ Shot FollowCamera::next(const Eigen::AlignedBox3d& front, double radius) {
   return shot;
 }
 
-void FollowCamera::save(CheckpointWriter& out) const {
+void FollowCamera::save(StateWriter& out) const {
   out.vector(centres_);
   out.value(half_);
 }
 
-void FollowCamera::load(CheckpointReader& in) {
+void FollowCamera::load(StateReader& in) {
   in.vector(centres_);
   in.expect(centres_.size() <= window_ + 1);
   in.value(half_);

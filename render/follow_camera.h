@@ -8,8 +8,8 @@
 #include <vector>
 
 namespace gs {
-class CheckpointWriter;
-class CheckpointReader;
+class StateWriter;
+class StateReader;
 }  // namespace gs
 
 namespace gs::render {
@@ -30,9 +30,9 @@ class FollowCamera {
 
   // What the frames so far taught it, for a movie's checkpoint: a camera loaded from it aims
   // the next frames as this one would.
-  void save(CheckpointWriter& out) const;
+  void save(StateWriter& out) const;
   // Refuses (as corrupt) a state of another window.
-  void load(CheckpointReader& in);
+  void load(StateReader& in);
 
  private:
   int dim_;

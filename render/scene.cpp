@@ -20,6 +20,8 @@ std::string fmt(const char* f, double v) {
 }
 
 std::string time_text(const SnapshotInfo& in) {
+  // A file without a time is labelled by its step (LAMMPS, HOOMD), not by a time of 0.
+  if (!in.has_time) return in.step ? "step " + std::to_string(*in.step) : std::string();
   std::string t = "t = " + fmt("%.6g", in.time);
   if (in.density)
     t += "   t_paper = " +

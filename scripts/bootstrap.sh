@@ -16,7 +16,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
 )
 # Optional for users, installed for the tests so that CI runs them: MPI ensembles; ASE, gsd
-# and LAMMPS reading and writing snapshot files with ours (tests/sim/test_interop.cpp).
+# and LAMMPS reading and writing snapshot files with ours (tests/io/test_interop.cpp).
 if [ "$mode" = test ]; then packages+=(libopenmpi-dev openmpi-bin python3-ase python3-gsd lammps); fi
 missing=()
 for p in "${packages[@]}"; do

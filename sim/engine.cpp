@@ -48,7 +48,7 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
 }
 
 template <int D>
-void Engine<D>::save(CheckpointWriter& out) const {
+void Engine<D>::save(StateWriter& out) const {
   out.string(to_toml(config_));
   out.value(now_);
   out.value(stats_);
@@ -67,7 +67,7 @@ void Engine<D>::save(CheckpointWriter& out) const {
 }
 
 template <int D>
-Engine<D>::Engine(const PhysicsConfig& c, CheckpointReader& in)
+Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
     : config_(c), grid_(c.box()), queue_(static_cast<std::size_t>(c.particles)) {
   if (in.string() != to_toml(c))
     throw UserError("the checkpoint is of a run with other physics than its run.toml");
@@ -530,6 +530,9 @@ void Engine<D>::snapshot(Snapshot& s) const {
   s.info.dim = D;
   s.info.set_cubic_box(grid_.box());
   s.info.time = now_;
+  // An event-driven run has no time step: its step is the collisions so far, which grows with
+  // the time as a step does (GSD's configuration/step, OVITO's Timestep).
+  s.info.step = stats_.collisions;
   s.info.density = static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;
@@ -567,7 +570,7 @@ double Engine<D>::max_overlap_now() const {
   return deepest;
 }
 
-std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, CheckpointReader& in) {
+std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, StateReader& in) {
   validate(c);
   if (in.identity().dim != c.dim ||
       in.identity().particles != static_cast<std::uint64_t>(c.particles))

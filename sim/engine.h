@@ -16,13 +16,13 @@
 #include <vector>
 
 #include "sim/cell_grid.h"
-#include "sim/checkpoint.h"
 #include "sim/collision.h"
 #include "sim/config.h"
 #include "sim/event_queue.h"
 #include "sim/huge_pages.h"
 #include "sim/initial.h"
 #include "sim/snapshot.h"
+#include "sim/state_stream.h"
 #include "sim/vec.h"
 
 namespace gs {
@@ -83,18 +83,18 @@ class Simulation {
   virtual double max_overlap_now() const = 0;
   // The whole state, derived structures included (cell lists, queue, predictions), so that a
   // simulation loaded from it makes the same events in the same order, ties included.
-  virtual void save(CheckpointWriter& out) const = 0;
+  virtual void save(StateWriter& out) const = 0;
 };
 
 std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c);
 // A simulation of `c` in the state save() wrote; refuses (UserError) one of other physics.
-std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, CheckpointReader& in);
+std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, StateReader& in);
 
 template <int D>
 class Engine final : public Simulation {
  public:
   Engine(const PhysicsConfig& c, InitialState<D> init);
-  Engine(const PhysicsConfig& c, CheckpointReader& in);
+  Engine(const PhysicsConfig& c, StateReader& in);
 
   int dim() const override { return D; }
   const PhysicsConfig& config() const override { return config_; }
@@ -107,7 +107,7 @@ class Engine final : public Simulation {
   void active_positions(std::vector<Eigen::Vector3d>& out) const override;
   const EngineStats& stats() const override { return stats_; }
   double max_overlap_now() const override;
-  void save(CheckpointWriter& out) const override;
+  void save(StateWriter& out) const override;
 
   // Per-particle state at the current time (unwrapped position).
   Vec<D> position(std::int32_t i) const;

@@ -19,9 +19,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/checkpoint.h"
 #include "sim/error.h"
 #include "sim/huge_pages.h"
+#include "sim/state_stream.h"
 
 namespace gs {
 
@@ -133,7 +133,7 @@ class EventQueue {
 
   // Every member, so that a loaded queue breaks ties and rebuilds its calendar exactly as the
   // saved one would have.
-  void save(CheckpointWriter& out) const {
+  void save(StateWriter& out) const {
     out.vector(entry_);
     out.vector(head_);
     out.value(overflow_);
@@ -151,7 +151,7 @@ class EventQueue {
     out.value(finds_);
     out.value(next_check_);
   }
-  void load(CheckpointReader& in) {
+  void load(StateReader& in) {
     const std::size_t n = entry_.size();
     in.vector(entry_);
     in.vector(head_);

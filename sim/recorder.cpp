@@ -51,13 +51,13 @@ std::vector<double> Recorder::row(const Simulation& sim, Sample* sample) {
   return r;
 }
 
-void Recorder::save(CheckpointWriter& out) const {
+void Recorder::save(StateWriter& out) const {
   out.value(last_t_);
   out.value(last_virial_);
   out.value(last_collisions_);
 }
 
-void Recorder::load(CheckpointReader& in) {
+void Recorder::load(StateReader& in) {
   in.value(last_t_);
   in.value(last_virial_);
   in.value(last_collisions_);

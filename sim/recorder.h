@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/checkpoint.h"
 #include "sim/config.h"
 #include "sim/engine.h"
+#include "sim/state_stream.h"
 
 namespace gs {
 
@@ -21,8 +21,8 @@ class Recorder {
   // that a caller wanting more of it need not compute it again).
   std::vector<double> row(const Simulation& sim, Sample* sample = nullptr);
   // What the next row depends on beside the simulation: the previous row's time and sums.
-  void save(CheckpointWriter& out) const;
-  void load(CheckpointReader& in);
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 
  private:
   PhysicsConfig config_;

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/snapshot_file.h"
 #include "render/png.h"
-#include "sim/snapshot_file.h"
 #include "tests/apps/cli_test_util.h"
 
 namespace gs {

@@ -9,12 +9,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/gsd.h"
 #include "render/field.h"
 #include "render/overlay.h"
 #include "render/png.h"
 #include "render/scene.h"
 #include "sim/error.h"
-#include "sim/gsd.h"
 #include "tests/apps/cli_test_util.h"
 
 namespace gs::render {

@@ -1,0 +1,31 @@
+#include "io/text_scan.h"
+
+#include <cmath>
+
+#include "sim/error.h"
+
+namespace gs {
+
+void throw_at_line(const std::string& path, std::size_t line, std::string_view what) {
+  std::string m = "snapshot '";
+  m.append(path).append("' line ").append(std::to_string(line)).append(": ").append(what);
+  throw UserError(m);
+}
+
+double finite_at(const std::string& path, std::size_t line, std::string_view tok,
+                 std::string_view name) {
+  double v = 0;
+  if (!parse_real(tok, v) || !std::isfinite(v))
+    throw_at_line(path, line, not_a(tok, "a finite number", name));
+  return v;
+}
+
+// Appending instead of chaining operator+ avoids GCC 12's false -Wrestrict on short literals.
+std::string not_a(std::string_view tok, std::string_view kind, std::string_view name) {
+  std::string m = "'";
+  if (tok.size() > 40) tok = tok.substr(0, 40);  // a hostile token must not flood the terminal
+  m.append(tok).append("' is not ").append(kind).append(" (").append(name).append(")");
+  return m;
+}
+
+}  // namespace gs

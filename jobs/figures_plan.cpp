@@ -1,0 +1,251 @@
+#include "jobs/figures_plan.h"
+
+#include <cstdio>
+
+#include "sim/format.h"
+
+namespace gs::jobs {
+namespace {
+
+// One (d, r) of the plan, sized per mode.
+struct RunSize {
+  double r;
+  std::int64_t particles;
+  double t_max;
+  std::uint64_t realisations;
+};
+
+// The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7, 0.9 (and 0.85 in 3D) added so that phi1
+// rests on six values of r (issue 21). The paper's r < 1 have the most realisations (Figs. 3-5
+// and the plateau fits), the added r fewer (only t_c1 and exponents are read from them).
+//
+// The largest r run farthest (t_c1 grows as r -> 1) and r = 1 fastest (R ~ t^(2/(d+2))); the
+// times keep the front (where the active density falls to half the ambient) below ~0.7 L/2 and
+// the outermost active particle below ~0.8 L/2, measured (2D: r = 0.8 at 1e5 reaches 176 of
+// L/2 = 316 with 1e5 discs; 3D, 5e5 spheres, L/2 = 63: the front at 0.52-0.60 L/2 for r <= 0.8
+// and at 0.71 L/2 for r = 0.9 at t = 8000; 4e6 spheres, L/2 = 126: 0.47-0.6 L/2 for r = 0.7-0.9
+// at t = 1e5, R_front ~ t^0.24-0.29). The report lists R_front / (L/2) at t_max for every case.
+//
+// 3D, r >= 0.7: E_t's local slope reaches its plateau only after t ~ 2e4 (r = 0.7: -0.68 at 2e4,
+// -0.71 from 3e4 to 1e5; r = 0.8 and 0.85: -0.66 to -0.69 and -0.63 to -0.68 over 2e4-1e5; r =
+// 0.9: still -0.60 to -0.64 and drifting over 3e4-1e5, 2 realisations each of 4e6 spheres,
+// delta = 1e-6), so --full runs them to 1e5 in boxes of 4e6 spheres (22, 21, 33 CPU-s per
+// realisation) and leaves r = 0.9 short: it would need t ~ 1e6 and ~3e7 spheres. --quick cannot
+// afford that and reaches t_c1 in 3D only for r <= 0.5; the report names the others.
+//
+// --quick (< 3 min on 2 cores; CPU time per realisation ~0.7-4.6 s in 2D and 1.4-3.8 s in 3D, the
+// larger r costing more) keeps every figure and report section, at half the --full times in 2D
+// (r = 0.9 also half, its t_c1 being ~1e2) and a sixth to a quarter in 3D, with 16 (2D) or 12
+// (3D) realisations for the paper's r < 1 (bootstrap intervals ~2x wider than --full's), 12 or 8
+// for the added r, 10 or 8 for r = 1. Measured on a quiet machine: 81 s wall.
+//
+// --full has the paper's sizes (2.5e5 discs, 2e6 spheres; 4e6 for 3D r = 0.7-0.85) but not its
+// ~100 realisations per case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D
+// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. Measured on a quiet machine: 851 s wall
+// (1553 CPU-s), of which 3D r = 0.7, 0.8, 0.85 take 63, 176, 159 s; --estimate: 823 s.
+std::vector<RunSize> sizes_of(FiguresMode m, int d) {
+  switch (m) {
+    case FiguresMode::Tiny:
+      if (d == 2)
+        return {{0.1, 3000, 1500, 3}, {0.3, 3000, 1500, 3}, {0.5, 3000, 1500, 3},
+                {0.7, 3000, 1500, 3}, {0.8, 3000, 1500, 3}, {0.9, 3000, 1500, 3},
+                {1.0, 3000, 150, 3}};
+      return {{0.1, 5000, 1000, 3}, {0.3, 5000, 1000, 3}, {0.5, 5000, 1000, 3}, {0.7, 5000, 600, 3},
+              {0.8, 5000, 600, 3},  {0.85, 5000, 600, 3}, {0.9, 5000, 600, 3},  {1.0, 5000, 80, 3}};
+    case FiguresMode::Quick:
+      if (d == 2)
+        return {{0.1, 100000, 1e5, 16},  {0.3, 100000, 1e5, 12}, {0.5, 100000, 1e5, 16},
+                {0.7, 100000, 1e5, 12},  {0.8, 100000, 1e5, 16}, {0.9, 100000, 5e4, 12},
+                {1.0, 100000, 12000, 10}};
+      return {{0.1, 500000, 30000, 12}, {0.3, 500000, 25000, 8}, {0.5, 500000, 20000, 12},
+              {0.7, 500000, 10000, 8},  {0.8, 500000, 8000, 12}, {0.85, 500000, 7000, 8},
+              {0.9, 500000, 6000, 8},   {1.0, 500000, 1200, 8}};
+    case FiguresMode::Full:
+    default:
+      if (d == 2)
+        // r = 0.95 (issue 33): phi1 nearest the elastic limit from 0.9 -> 0.95; its t_c1 is
+        // ~4.6 times r = 0.9's (~3e2), the plateau from ~1e4.
+        return {{0.1, 250000, 2e5, 40},  {0.3, 250000, 2e5, 32},  {0.5, 250000, 2e5, 40},
+                {0.7, 250000, 2e5, 32},  {0.8, 250000, 2e5, 40},  {0.9, 250000, 1e5, 32},
+                {0.95, 250000, 1e5, 24}, {1.0, 250000, 30000, 24}};
+      return {{0.1, 2000000, 120000, 20}, {0.3, 2000000, 110000, 12}, {0.5, 2000000, 100000, 20},
+              {0.7, 4000000, 100000, 12}, {0.8, 4000000, 100000, 20}, {0.85, 4000000, 100000, 12},
+              {0.9, 2000000, 20000, 12},  {1.0, 2000000, 6000, 16}};
+  }
+}
+
+// 3D, r < 1: the cutoff below which collisions are elastic is 1e-6, not the paper's 1e-4. With
+// 1e-4, E_t's local slope turns back up (towards the elastic regime, t_c2: v_t ~ delta) before it
+// plateaus: from t ~ 5e3 at r = 0.1 (-0.70 to -0.655 by 2.4e4, 5e5 spheres) and ~3e4 at r = 0.7
+// (-0.69 to -0.63 by 6e4, 4e6 spheres, where 1e-6 gives -0.71 throughout); t_c2 ~ delta^-(4/3)
+// comes ~460 times later at 1e-6. 2D keeps the paper's 1e-4: its late slopes are the same with
+// 1e-6 (r = 0.1, 1e5 discs: -0.63 to -0.64 from 1e4 to 1e5 with either).
+constexpr double kCutoff3D = 1e-6;
+
+// 2D, r < 1: 1e-5 (issue 33). At the paper's 1e-4 the local slope of N_t in --full drifts from
+// 0.66 to 0.72 over [8.9e3, 2e5], the start of the delta crossover (t_c2 ~ 2.7e5 at 1e-4 by the
+// measured phi2); at 1e-6 (r = 0.1, 20 realisations) it is flat at 0.668 [0.662, 0.673]. 1e-6
+// as in 3D costs ~6 times 1e-4 in 2D (r = 0.1, 1e5 discs, t = 1e5: ~9 CPU-s per realisation
+// against 1.6), 1e-5 1.6 times (2.5 CPU-s), and t_c2 ~ delta^-3/2 comes 32 times later than at
+// 1e-4, at ~8e6, 40 times the longest 2D run. The delta scan keeps its own larger cutoffs and
+// measures t_c2 itself.
+constexpr double kCutoff2D = 1e-5;
+
+// --long: 3D r = 0.1 and 0.5 to t = 1e6 with delta = 1e-6, 16 realisations. The box holds the
+// front below ~0.6 L/2: R_front ~ t^0.25 from the --quick fronts (see the size below).
+// Opt-in: about an hour on 2 cores; --long --estimate gives its time.
+struct Long3D {
+  double r;
+  std::int64_t particles;
+  double t_max;
+  std::uint64_t realisations;
+};
+std::vector<Long3D> long3d_cases() { return {{0.1, 4000000, 1e6, 16}, {0.5, 4000000, 1e6, 16}}; }
+
+// The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
+// to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
+// own case, at N >= 4e6 to t = 2e4 in --full, and smaller in --quick, the plateau rule deciding.
+struct Elastic3D {
+  std::int64_t particles;
+  double t_max;
+  std::uint64_t realisations;
+};
+Elastic3D elastic3d_of(FiguresMode m) {
+  switch (m) {
+    case FiguresMode::Tiny:
+      return {8000, 120, 2};
+    case FiguresMode::Quick:  // to the end of the dip: the plateau rule says whether it is reached
+      return {1500000, 5000, 3};
+    case FiguresMode::Full:
+    default:  // 64 CPU-s per realisation (--estimate)
+      return {4000000, 20000, 5};
+  }
+}
+
+// The delta scan (2D, r = 0.1). t_c2 ~ delta^(-1/(1-alpha)) (the paper's phi2 = 3/2 in 2D): with
+// the paper's delta = 1e-4 it lies near t ~ 2e5-3e5, beyond the longest run, so larger cutoffs
+// bring it into reach. Measured on 8 realisations of 2e5 discs: v_t ~ 0.66 t^(-2/3) and the
+// local slope of N_t leaves the band around 2/3 for good at t ~ 7e3, 1e4, 1.5e4, 2.4e4 for delta
+// = 1.4e-3, 1e-3, 7e-4, 5e-4, reaching 0.95 by 1.8e5 (--quick, 12 realisations of 1e5 discs:
+// t_c2 = 4.5e3, 7.8e3, 1.1e4, 2.2e4, phi2 ~ 1.55).
+// Larger cutoffs are useless: from delta ~ 2e-3 on, t_c2 comes before the band is reached at
+// t_c1 ~ 1e3 and no crossover is defined. Each run lasts >= 3.5 t_c2 of its smallest cutoff, so the
+// slope is well above the band at its end; past t_c2 the front spreads as r = 1 does (R ~
+// t^(1/2)) and was at 184 of L/2 = 447 at t = 1.8e5 (2e5 discs, delta = 1.4e-3): 1e5 discs
+// (L/2 = 316) hold it to 1e5 (0.44 L/2 measured), 2.5e5 (L/2 = 500) to 2.5e5.
+struct DeltaScan {
+  std::int64_t particles;
+  double t_max;
+  std::uint64_t realisations;
+  std::vector<double> cutoffs;
+};
+DeltaScan delta_scan_of(FiguresMode m) {
+  switch (m) {
+    case FiguresMode::Tiny:  // every file; no t_c2 in 300 time units
+      return {3000, 300, 2, {1e-2, 5e-3, 2.5e-3, 1e-3}};
+    case FiguresMode::Quick:
+      return {100000, 80000, 12, {1.4e-3, 1e-3, 7e-4, 5e-4}};
+    case FiguresMode::Full:
+    default:  // five cutoffs, the smallest's t_c2 ~ 6e4
+      return {250000, 250000, 16, {1e-3, 7e-4, 5e-4, 3.5e-4, 2.5e-4}};
+  }
+}
+
+}  // namespace
+
+const char* to_string(FiguresMode m) {
+  switch (m) {
+    case FiguresMode::Tiny:
+      return "tiny";
+    case FiguresMode::Quick:
+      return "quick";
+    default:
+      return "full";
+  }
+}
+
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
+  FiguresPlan plan;
+  plan.mode = mode;
+  auto add = [&](const std::string& name, EnsembleSpec e, CaseRole role) {
+    FigureCase c;
+    c.name = name;
+    c.role = role;
+    c.delta_scan = role == CaseRole::DeltaScan;
+    e.physics.seed = seed;
+    e.per_decade = 20;
+    c.spec = checked(e);
+    plan.cases.push_back(std::move(c));
+  };
+  for (int d : {2, 3}) {
+    for (const RunSize& s : sizes_of(mode, d)) {
+      EnsembleSpec e;
+      e.physics.dim = d;
+      e.physics.particles = s.particles;
+      e.physics.restitution = s.r;
+      if (s.r < 1) e.physics.cutoff = d == 3 ? kCutoff3D : kCutoff2D;
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
+      // The paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and 1 : 5/3 : 2.5 (3D).
+      const double T = e.physics.t_max;
+      e.snapshot_times = d == 2 ? std::vector<double>{T / 2, 0.75 * T, T}
+                                : std::vector<double>{0.4 * T, T * 2 / 3, T};
+      // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+      std::string name = "d";
+      name.append(std::to_string(d)).append("_r").append(format_number(s.r));
+      add(name, e, CaseRole::Paper);
+    }
+  }
+  {
+    const Elastic3D s = elastic3d_of(mode);
+    EnsembleSpec e;
+    e.physics.dim = 3;
+    e.physics.particles = s.particles;
+    e.physics.restitution = 1;
+    e.physics.t_max = s.t_max;
+    e.realisations = s.realisations;
+    add("d3_r1_large", e, CaseRole::Elastic3D);
+  }
+  if (long_3d) {
+    for (const Long3D& s : long3d_cases()) {
+      EnsembleSpec e;
+      e.physics.dim = 3;
+      e.physics.particles = s.particles;
+      e.physics.restitution = s.r;
+      e.physics.cutoff = kCutoff3D;
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
+      const double T = s.t_max;
+      e.snapshot_times = {0.4 * T, T * 2 / 3, T};
+      add(std::string("d3_r").append(format_number(s.r)).append("_long"), e, CaseRole::Long3D);
+    }
+  }
+  {
+    const DeltaScan s = delta_scan_of(mode);
+    for (double delta : s.cutoffs) {
+      EnsembleSpec e;
+      e.physics.dim = 2;
+      e.physics.particles = s.particles;
+      e.physics.restitution = 0.1;
+      e.physics.cutoff = delta;
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
+      add(std::string("d2_r0.1_delta").append(format_number(delta)), e, CaseRole::DeltaScan);
+    }
+  }
+  const std::vector<RunSize> plane = sizes_of(mode, 2);
+  const double T = plane.front().t_max;  // r = 0.1
+  // The paper's Fig. 1(a) times 5000, 10000, 20000, 50000 as fractions of the last.
+  plan.fig1a_times = {T / 10, T / 5, T * 2 / 5, T};
+  plan.fig1b_time = plane.back().t_max;  // r = 1
+  return plan;
+}
+
+const FigureCase* find_case(const FiguresPlan& plan, int d, double r) {
+  for (const auto& c : plan.cases)
+    if (c.role == CaseRole::Paper && c.spec.physics.dim == d && c.spec.physics.restitution == r)
+      return &c;
+  return nullptr;
+}
+
+}  // namespace gs::jobs

@@ -1,0 +1,46 @@
+#pragma once
+// What `grainshock figures` runs: one ensemble per (d, r), sized per mode. Times are chosen so
+// that the front stays well inside the periodic box (its outer edge below L/2 at t_max), and
+// the snapshot times of the 2D and 3D r = 0.1 ensembles are the paper's Figs. 4 and 5 times
+// scaled to the run (the paper's are 25000, 37500, 50000 and 30000, 50000, 75000 in its unit).
+#include <string>
+#include <vector>
+
+#include "analysis/realisation.h"
+
+namespace gs::jobs {
+
+enum class FiguresMode { Tiny, Quick, Full };
+
+// Paper: one (d, r) of the paper's figures (and the added r of the phi1 fit). DeltaScan: the
+// scan of the cutoff delta (2D, r = 0.1) that measures t_c2 ~ delta^-phi2, only in fig7 and the
+// phi2 comparison. Elastic3D: the 3D elastic blast run big and long enough for its plateau.
+// Long3D (opt-in, `figures --long`): 3D r = 0.1 and 0.5 to t = 1e6, to show whether 3D alpha =
+// 1/4 is reached on a plateau that passes the drift rule; their exponents are compared, their
+// t_c1 stay out of phi1 (the paper cases of the same r give it).
+enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D };
+
+struct FigureCase {
+  std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
+  EnsembleSpec spec;
+  CaseRole role = CaseRole::Paper;
+  bool delta_scan = false;  // role == DeltaScan
+};
+
+struct FiguresPlan {
+  FiguresMode mode = FiguresMode::Quick;
+  std::vector<FigureCase> cases;
+  // Fig. 1: a single realisation of the 2D r = 0.1 case rendered at these times (overlay), and
+  // of the 2D r = 1 case at one time.
+  std::vector<double> fig1a_times;
+  double fig1b_time = 0;
+};
+
+const char* to_string(FiguresMode m);
+// long_3d: add the Long3D cases to the mode's plan.
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false);
+
+// The case of dimension d and restitution r, or nullptr.
+const FigureCase* find_case(const FiguresPlan& plan, int d, double r);
+
+}  // namespace gs::jobs

@@ -1,0 +1,499 @@
+#include "jobs/figures_plots.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "analysis/quantile.h"
+#include "jobs/plot.h"
+#include "render/png.h"
+#include "render/renderer.h"
+#include "sim/engine.h"
+#include "sim/error.h"
+#include "sim/format.h"
+
+namespace gs::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Where figures go and in which formats.
+struct Out {
+  fs::path dir;
+  std::vector<std::string> formats;
+  std::string plot(const std::string& script_name, const std::string& script) const {
+    return run_gnuplot(dir, script_name, script, formats);
+  }
+};
+
+std::string rtext(double r) {
+  return format_number(r);
+}
+
+// A plot that says why it is empty (gnuplot refuses to plot a file without points).
+std::string no_data_plot(const std::string& csv, const std::string& why) {
+  return "# " + csv + " has no rows: " + why + "\nset label 1 '" + why +
+         "' at graph 0.5, 0.5 center\nunset key\nplot [0:1][0:1] -1 notitle\n";
+}
+
+std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
+  const FigureCase* a = find_case(plan, 2, 0.1);
+  const FigureCase* b = find_case(plan, 2, 1.0);
+  GS_CHECK(a && b);
+  try {
+    render::Renderer renderer;
+    render::View view;
+    view.width = 1000;
+    view.height = 1000;
+    render::Style style;
+    {
+      PhysicsConfig c = a->spec.physics;
+      c.realisation = 0;
+      auto sim = make_simulation(c);
+      std::vector<Snapshot> snaps;
+      for (double t : plan.fig1a_times) {
+        sim->run_until(t);
+        snaps.push_back(sim->snapshot());
+      }
+      std::vector<const Snapshot*> ptrs;
+      for (const auto& s : snaps) ptrs.push_back(&s);
+      const auto img = renderer.render(ptrs, style, view);
+      render::write_png((dir / "fig1a_overlay_r0.1.png").string(), img,
+                        render::png_text(snaps.back().info, snaps.back().size()));
+    }
+    {
+      PhysicsConfig c = b->spec.physics;
+      c.realisation = 0;
+      auto sim = make_simulation(c);
+      sim->run_until(plan.fig1b_time);
+      const Snapshot s = sim->snapshot();
+      const auto img = renderer.render(s, style, view);
+      render::write_png((dir / "fig1b_elastic_r1.png").string(), img,
+                        render::png_text(s.info, s.size()));
+    }
+  } catch (const UserError& e) {
+    return std::string("Fig. 1 not rendered: ") + e.what();
+  }
+  return {};
+}
+
+std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int d, bool elastic) {
+  std::vector<const CaseResult*> out;
+  for (const auto& c : all)
+    if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.dim == d &&
+        (c.plan->spec.physics.restitution == 1.0) == elastic)
+      out.push_back(&c);
+  return out;
+}
+
+// Theory lines are told apart by dimension: d = 2 black dashes, d = 3 dark red dots-dashes.
+std::string theory_style(int d) {
+  return d == 2 ? "lw 2 dt 2 lc rgb 'black'" : "lw 2 dt 4 lc rgb '#a00000'";
+}
+
+std::string exponent_text(int d, bool energy) {
+  return std::string(energy ? "-" : "") + (d == 2 ? "2/3" : "3/4");
+}
+
+std::string fig2(const std::vector<CaseResult>& all, const Out& out) {
+  Table t;
+  for (const char* n : {"d", "r", "t", "t_paper", "A", "A_sem"}) t.add_column(n, {});
+  std::string plot;
+  auto cases = cases_of(all, 2, false);
+  for (const CaseResult* c : cases_of(all, 2, true)) cases.push_back(c);
+  for (const CaseResult* c : cases) {
+    const Table ts = c->sums.timeseries();
+    const double r = c->plan->spec.physics.restitution;
+    for (std::size_t i = 0; i < ts.rows(); ++i) {
+      if (ts.column("active")[i] < 3) continue;  // no shape before the band has particles
+      const std::vector<double> row = {2.0,
+                                       r,
+                                       ts.column("t")[i],
+                                       ts.column("t_paper")[i],
+                                       ts.column("anisotropy")[i],
+                                       ts.column("anisotropy_sem")[i]};
+      t.add_row(row);
+    }
+    plot += std::string(plot.empty() ? "plot " : ", \\\n     ") +
+            "'fig2_anisotropy.csv' skip 1 using ($2==" + rtext(r) +
+            " ? $4 : 1/0):5:6 with yerrorlines title 'r = " + rtext(r) + "'";
+  }
+  write_csv(t, out.dir / "fig2_anisotropy.csv");
+  std::string gp = gnuplot_preamble("fig2_anisotropy", 900, 650);
+  gp +=
+      "set title 'Fig. 2: anisotropy index A(t) in 2D (mean over realisations)'\n"
+      "set logscale xy\nset xlabel 't (paper units 1/(v_0 n^{1/d}))'\nset ylabel 'A(t)'\n"
+      "set yrange [*:1]\nset format y '10^{%L}'\nset key bottom left\n" +
+      plot + "\n";
+  return out.plot("fig2_anisotropy.gp", gp);
+}
+
+std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
+  Table t;
+  for (const char* n : {"d", "r", "t", "t_paper", "N", "N_sem", "E", "E_sem"}) t.add_column(n, {});
+  std::string plot_n, plot_e, theory;
+  for (int d : {2, 3}) {
+    for (const CaseResult* c : cases_of(all, d, false)) {
+      const Table ts = c->sums.timeseries();
+      const double r = c->plan->spec.physics.restitution;
+      // The paper's Fig. 3 shows r = 0.1, 0.5, 0.8; the other r are there for phi1 (fig6).
+      const int colour = r == 0.1 ? 1 : r == 0.5 ? 2 : r == 0.8 ? 3 : 0;
+      if (colour == 0) continue;
+      for (std::size_t i = 0; i < ts.rows(); ++i) {
+        const std::vector<double> row = {double(d),
+                                         r,
+                                         ts.column("t")[i],
+                                         ts.column("t_paper")[i],
+                                         ts.column("active")[i],
+                                         ts.column("active_sem")[i],
+                                         ts.column("energy")[i],
+                                         ts.column("energy_sem")[i]};
+        t.add_row(row);
+      }
+      const std::string sel = "($1==" + std::to_string(d) + " && $2==" + rtext(r) + " ? $4 : 1/0)";
+      // Colour by r, open points in 2D and filled ones in 3D.
+      // 3D takes colours 4-6, so that no 2D and 3D curve share one.
+      const std::string title = " lc " + std::to_string(colour + (d == 3 ? 3 : 0)) + " pt " +
+                                (d == 2 ? "6" : "7") +
+                                " title 'd = " + std::to_string(d) + ", r = " + rtext(r) + "'";
+      plot_n += std::string(plot_n.empty() ? "plot " : ", \\\n     ") +
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":5" + title;
+      plot_e += std::string(plot_e.empty() ? "plot " : ", \\\n     ") +
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":7" + title;
+    }
+    // Theory lines through the last point of the r = 0.1 curve.
+    const auto cs = cases_of(all, d, false);
+    if (!cs.empty()) {
+      const Table ts = cs.front()->sums.timeseries();
+      const double a = 1.0 / (d + 1);
+      const double tp = ts.column("t_paper").back();
+      const double n = ts.column("active").back(), e = ts.column("energy").back();
+      char buf[400];
+      // Drawn over the last two decades only, where the scaling regime is.
+      std::snprintf(buf, sizeof buf,
+                    "N%d(x) = x < %.6g ? 1/0 : %.6g*(x/%.6g)**(%.6g)\n"
+                    "E%d(x) = x < %.6g ? 1/0 : %.6g*(x/%.6g)**(%.6g)\n",
+                    d, tp / 100, n, tp, a * d, d, tp / 100, e, tp, a * d + 2 * a - 2);
+      theory += buf;
+      const std::string ds = std::to_string(d);
+      plot_n += ", \\\n     N" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
+                exponent_text(d, false) + "} (theory, d = " + ds + ")'";
+      plot_e += ", \\\n     E" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
+                exponent_text(d, true) + "} (theory, d = " + ds + ")'";
+    }
+  }
+  write_csv(t, out.dir / "fig3_active_energy.csv");
+  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 650);
+  gp += theory;
+  gp +=
+      "set multiplot layout 1,2 title 'Fig. 3: mean active particles and kinetic energy (not "
+      "shifted)'\n"
+      "set samples 500\nset logscale xy\nset xlabel 't (paper units)'\nset format y '10^{%L}'\n"
+      "set format x '10^{%L}'\nset key font ',10'\n"
+      "set title '(a) ⟨N_t⟩'\nset ylabel '⟨N_t⟩'\n" +
+      plot_n + "\nset title '(b) ⟨E_t⟩'\nset ylabel '⟨E_t⟩'\nset key bottom left\n" + plot_e +
+      "\nunset multiplot\n";
+  return out.plot("fig3_active_energy.gp", gp);
+}
+
+std::string fig_collapse(const CaseResult& c, const Out& out, const std::string& base, int fig) {
+  const Table d = read_csv(out.dir / "ensembles" / c.plan->name / "distributions_mean.csv");
+  Table t;
+  for (const char* n : {"t", "t_paper", "x_R", "f1", "x_v", "f2"}) t.add_column(n, {});
+  const auto& p = c.plan->spec.physics;
+  for (std::size_t i = 0; i < d.rows(); ++i) {
+    const std::vector<double> row = {d.column("t")[i],   p.paper_time(d.column("t")[i]),
+                                     d.column("x_R")[i], d.column("f1")[i],
+                                     d.column("x_v")[i], d.column("f2")[i]};
+    t.add_row(row);
+  }
+  write_csv(t, out.dir / (base + ".csv"));
+  std::string pr, pv;
+  for (double ts : c.plan->spec.snapshot_times) {
+    const std::string sel = "($1==" + format_number(ts) + " ? ";
+    const std::string title = "'t = " + format_number(std::round(p.paper_time(ts))) + "'";
+    pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
+          sel + "$3 : 1/0):4 title " + title;
+    pv += std::string(pv.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
+          sel + "$5 : 1/0):($6 > 0 ? $6 : 1/0) title " + title;
+  }
+  const std::string as = p.dim == 2 ? "1/3" : "1/4";
+  const std::string bs = p.dim == 2 ? "2/3" : "3/4";  // 1 - alpha
+  std::string gp = gnuplot_preamble(base, 1400, 600);
+  gp += "set multiplot layout 1,2 title 'Fig. " + std::to_string(fig) + ": scaling collapse in " +
+        std::to_string(p.dim) + "D, r = " + rtext(p.restitution) + ", α = " + as +
+        " (times in paper units)'\n";
+  gp += "set title '(a) t^{α} P(R,t) against R t^{-α}'\nset xlabel 'R t^{-" + as +
+        "}'\nset ylabel 't^{" + as + "} P(R,t)'\nset key top left\n" + pr + "\n";
+  gp += "set title '(b) t^{α-1} P(v,t) against v t^{1-α}'\nset xlabel 'v t^{" + bs +
+        "}'\nset ylabel 't^{-" + bs +
+        "} P(v,t)'\nset logscale y\nset format y '10^{%L}'\nset key top right\n" + pv + "\n";
+  gp += "unset multiplot\n";
+  return out.plot(base + ".gp", gp);
+}
+
+// "R_front" -> "R_{front}": a whole subscript in gnuplot's enhanced text.
+std::string enhanced(const std::string& q) {
+  std::string out;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (q[i] != '_') {
+      out += q[i];
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < q.size() && std::isalnum(static_cast<unsigned char>(q[j]))) ++j;
+    out += "_{" + q.substr(i + 1, j - i - 1) + "}";
+    i = j - 1;
+  }
+  return out;
+}
+
+// The local slopes of every fitted quantity of one case with their bootstrap bands, the
+// theory's exponent and the plateau fit (fig8_local_slopes_<case>).
+std::string fig_local_slopes(const CaseResult& c, const Out& out) {
+  const auto& f = c.fits;
+  const auto& p = c.plan->spec.physics;
+  const std::string base = "fig8_local_slopes_" + c.plan->name;
+  Table t;
+  t.add_column("t", f.exponents.front().slope.t);
+  std::vector<double> tp;
+  for (double x : f.exponents.front().slope.t) tp.push_back(p.paper_time(x));
+  t.add_column("t_paper", tp);
+  for (const auto& e : f.exponents) {
+    std::string col = e.column;
+    t.add_column(col + "_slope", e.slope.slope);
+    t.add_column(col + "_lo", e.slope.lo);
+    t.add_column(col + "_hi", e.slope.hi);
+  }
+  write_csv(t, out.dir / (base + ".csv"));
+  // From <N_t> >= 20 on, where the plateau search starts (earlier slopes are a handful of
+  // particles' noise).
+  const Table ts = c.sums.timeseries();
+  double t_start = ts.column("t").back();
+  for (std::size_t i = 0; i < ts.rows(); ++i)
+    if (ts.column("active")[i] >= 20) {
+      t_start = ts.column("t")[i];
+      break;
+    }
+  std::string gp = gnuplot_preamble(base, 1500, 900);
+  gp += "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) +
+        "]\nset offsets 0, 0, graph 0.3, 0\n";
+  gp +=
+      "set multiplot layout 2,3 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
+      ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
+      " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
+      "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
+      "set key top right font ',9' samplen 2\nset style fill transparent solid 0.3 "
+      "noborder\n";
+  for (std::size_t q = 0; q < f.exponents.size(); ++q) {
+    const auto& e = f.exponents[q];
+    const int col = 3 + 3 * int(q);  // slope column
+    const std::string name = enhanced(e.quantity);
+    gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
+    std::string plot = "plot '" + base + ".csv' skip 1 using 1:" + std::to_string(col + 1) + ":" +
+                       std::to_string(col + 2) +
+                       " with filledcurves lc rgb '#6090d0' title '95% band', '' skip 1 using 1:" +
+                       std::to_string(col) +
+                       " with lines lw 2 lc rgb '#2050a0' title 'local slope'";
+    if (std::isfinite(e.theory)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "%.6g", e.theory);
+      plot += std::string(", ") + buf + " with lines " + theory_style(p.dim) + " title 'theory " +
+              figure_number(e.theory, 3) + "'";
+    }
+    if (std::isfinite(e.fit.exponent)) {
+      char buf[300];
+      std::snprintf(buf, sizeof buf, ", (x >= %.6g && x <= %.6g) ? %.6g : 1/0", e.fit.window.t_lo,
+                    e.fit.window.t_hi, e.fit.exponent);
+      plot += std::string(buf) + " with lines lw 5 lc rgb '#d06000' title 'fit " +
+              figure_number(e.fit.exponent, 3) + " [" + figure_number(e.fit.ci_lo, 3) + ", " +
+              figure_number(e.fit.ci_hi, 3) + "]'";
+    } else {
+      gp += "set label 1 'no plateau within the run' at graph 0.04, 0.08 left\n";
+    }
+    gp += plot + "\nunset label 1\n";
+  }
+  gp += "unset multiplot\n";
+  return out.plot(base + ".gp", gp);
+}
+
+// Crossover times against their control parameter with the fitted line, its exponent and
+// interval in the key; one set of points per CrossoverSet (a rule in one dimension), the sets
+// after the first of each dimension drawn open.
+struct CrossoverPlot {
+  std::string base, title, xlabel, ylabel, name;  // name: φ_1 or φ_2
+};
+
+std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
+                                 const std::vector<CrossoverSet>& sets) {
+  Table t;
+  for (const char* n : {"set", "d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+  std::string plot, functions;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const CrossoverSet& set = sets[k];
+    const int d = set.d;
+    for (const auto& p : set.points) {
+      if (!p.crossover.found) continue;
+      std::vector<double> ok;
+      for (double x : p.draws)
+        if (std::isfinite(x)) ok.push_back(x);
+      std::sort(ok.begin(), ok.end());
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      const double lo = ok.size() >= 10 ? sorted_quantile(ok, 0.025) : nan;
+      const double hi = ok.size() >= 10 ? sorted_quantile(ok, 0.975) : nan;
+      const std::vector<double> row = {double(k), double(d), p.control, p.crossover.time, lo, hi};
+      t.add_row(row);
+    }
+    const std::string ks = std::to_string(k), ds = std::to_string(d);
+    const std::string title = "d = " + ds + (set.rule.empty() ? "" : ", " + set.rule);
+    plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
+            ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " +
+            (set.open ? "6" : "7") + " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") +
+            "' title '" + title + "'";
+    const auto& f = set.fit;
+    if (std::isfinite(f.fit.phi)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "T%zu(x) = %.6g*x**(-%.6g)\n", k, f.fit.prefactor, f.fit.phi);
+      functions += buf;
+      const std::string interval =
+          std::isfinite(f.ci_lo)
+              ? " [" + figure_number(f.ci_lo, 3) + ", " + figure_number(f.ci_hi, 3) + "]"
+              : " ± " + figure_number(f.fit.standard_error, 2);
+      const std::string line =
+          set.open ? std::string("lw 1 dt 3 lc rgb '") + (d == 2 ? "black" : "#a00000") + "'"
+                   : theory_style(d);
+      plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title +
+              " fit: " + cp.name + " = " + figure_number(f.fit.phi, 3) + interval + "'";
+    }
+  }
+  write_csv(t, out.dir / (cp.base + ".csv"));
+  std::string gp = gnuplot_preamble(cp.base, 900, 650);
+  if (t.rows() == 0)
+    return out.plot(cp.base + ".gp",
+                    gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
+  gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
+        "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " + plot + "\n";
+  return out.plot(cp.base + ".gp", gp);
+}
+
+// fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
+// beside the paper's 0.78-0.82 (r < 1) and ~0.47 (r = 1) and the edge-free measures.
+std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
+  Table t;
+  for (const char* n : {"r", "packing", "P"}) t.add_column(n, {});
+  std::string plot;
+  for (bool elastic : {false, true})
+    for (const CaseResult* c : cases_of(all, 2, elastic)) {
+      const double r = c->plan->spec.physics.restitution;
+      if (c->sums.snapshots().empty() || c->sums.count() == 0) continue;
+      const Histogram h = c->sums.snapshots().back().packing.mean();
+      for (std::size_t b = 0; b < h.bins(); ++b) {
+        const std::vector<double> row = {r, h.centre(b), h.values[b]};
+        t.add_row(row);
+      }
+      plot += std::string(plot.empty() ? "plot " : ", \\\n     ") +
+              "'fig9_packing.csv' skip 1 using ($1==" + rtext(r) +
+              " ? $2 : 1/0):3 with steps lw 2 title sprintf('r = " + rtext(r) +
+              ": local 90%% %.2f, densest cell %.2f', " +
+              format_double(c->fits.last_scalar("packing_local_upper")) + ", " +
+              format_double(c->fits.last_scalar("packing_densest_cell")) + ")";
+    }
+  write_csv(t, out.dir / "fig9_packing.csv");
+  std::string gp = gnuplot_preamble("fig9_packing", 1000, 650);
+  if (t.rows() == 0)
+    return out.plot("fig9_packing.gp", gp + no_data_plot("fig9_packing.csv", "no band cells"));
+  gp +=
+      "set title 'Packing fraction of cells of side 10 holding band particles, weighted by "
+      "their active particles (2D, last snapshot)'\n"
+      "set xlabel 'cell packing fraction φ'\nset ylabel 'active-weighted density'\n"
+      "set xrange [0:1]\nset key at graph 0.98, graph 0.9 right top font ',10'\n"
+      "set object 1 rect from 0.78, graph 0 to 0.82, graph 1 fc rgb '#c0c0c0' fs solid 0.4 "
+      "noborder behind\n"
+      "set arrow 1 from 0.47, graph 0 to 0.47, graph 1 nohead dt 2 lw 2 lc rgb 'black'\n"
+      "set label 2 'paper r < 1: 0.78-0.82' at 0.77, graph 0.95 right\n"
+      "set label 3 'paper r = 1: ~0.47' at 0.48, graph 0.95 left\n" +
+      plot + "\n";
+  return out.plot("fig9_packing.gp", gp);
+}
+
+}  // namespace
+
+std::string figure_number(double x, int digits) {
+  if (!std::isfinite(x)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+std::string slope_figure_of(const FigureCase& c) {
+  return "fig8_local_slopes_" + c.name + ".png";
+}
+
+Crossovers crossovers_of(const std::vector<CaseResult>& results) {
+  Crossovers x;
+  for (int d : {2, 3}) {
+    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}};
+    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}};
+    for (const CaseResult* c : cases_of(results, d, false)) {
+      const double r = c->plan->spec.physics.restitution;
+      energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
+      theory_b.points.push_back(
+          {1 - r * r, "r = " + rtext(r), c->fits.tc1_theory_b, c->fits.tc1_theory_b_draws});
+    }
+    energy.fit = fit_crossover_points(energy.points);
+    energy.local = local_crossover_exponents(energy.points);
+    theory_b.fit = fit_crossover_points(theory_b.points);
+    x.tc1.push_back(std::move(energy));
+    x.tc1_theory_b.push_back(std::move(theory_b));
+  }
+  CrossoverSet scan{2, "", {}, {}, false, {}};
+  for (const auto& c : results) {
+    if (!c.plan->delta_scan) continue;
+    const double delta = c.plan->spec.physics.cutoff;
+    scan.points.push_back({delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
+  }
+  scan.fit = fit_crossover_points(scan.points);
+  x.tc2.push_back(std::move(scan));
+  return x;
+}
+
+std::vector<std::string> write_figures(const FiguresPlan& plan,
+                                       const std::vector<CaseResult>& results,
+                                       const Crossovers& crossovers, const fs::path& dir,
+                                       const std::vector<std::string>& formats) {
+  const Out out{dir, formats};
+  std::vector<std::string> problems;
+  auto check = [&](std::string e) {
+    if (!e.empty()) problems.push_back(std::move(e));
+  };
+  check(render_fig1(plan, dir));
+  check(fig2(results, out));
+  check(fig3(results, out));
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    if (c.plan->role == CaseRole::Paper && p.restitution == 0.1)
+      check(fig_collapse(c, out, p.dim == 2 ? "fig4_collapse_2d" : "fig5_collapse_3d",
+                         p.dim == 2 ? 4 : 5));
+    if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
+  }
+  check(fig_packing(results, out));
+  std::vector<CrossoverSet> tc1 = crossovers.tc1;
+  tc1.insert(tc1.end(), crossovers.tc1_theory_b.begin(), crossovers.tc1_theory_b.end());
+  check(fig_crossover_points(
+      out,
+      {"fig6_crossover",
+       "Crossover time t_{c1} against 1 - r^2 (paper: φ_1 = 2.25 in 2D, 3.0 in 3D)", "1 - r^2",
+       "t_{c1} (simulation units)", "φ_1"},
+      tc1));
+  check(fig_crossover_points(
+      out,
+      {"fig7_tc2_delta",
+       "Crossover time t_{c2} against the cutoff δ (2D, r = 0.1; paper: φ_2 = 3/2)", "δ",
+       "t_{c2} (simulation units)", "φ_2"},
+      crossovers.tc2));
+  return problems;
+}
+
+}  // namespace gs::jobs

@@ -1,0 +1,54 @@
+#pragma once
+// The figures of `grainshock figures` from the ensembles of a FiguresPlan: Fig. 1 drawn by the
+// renderer, the others as a CSV beside the gnuplot script that draws it (jobs/plot.h); and the
+// crossover points of the phi1 and phi2 fits, which figs. 6 and 7 and the report share.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "analysis/ensemble_output.h"
+#include "analysis/paper.h"
+#include "jobs/figures_plan.h"
+
+namespace gs::jobs {
+
+// One case of the plan, run.
+struct CaseResult {
+  const FigureCase* plan = nullptr;
+  EnsembleSums sums;
+  EnsembleFits fits;
+  double wall = 0;  // seconds
+};
+
+// The crossover times of one rule in one dimension and their phi fit.
+struct CrossoverSet {
+  int d = 2;
+  std::string rule;  // in the figure's key; empty for the only rule
+  std::vector<CrossoverPoint> points;
+  CrossoverExponentFit fit;
+  bool open = false;  // drawn with open symbols: a reading beside the reported one
+  std::vector<LocalCrossoverExponent> local;  // between neighbouring points (tc1 only)
+};
+
+// t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1) by the intersection rule and,
+// beside it, with E_t's exponent fixed at the theory's; t_c2 against the cutoff delta (phi2,
+// from the 2D r = 0.1 scan).
+struct Crossovers {
+  std::vector<CrossoverSet> tc1, tc1_theory_b, tc2;
+};
+Crossovers crossovers_of(const std::vector<CaseResult>& results);
+
+// "fig8_local_slopes_<case>.png": the figure an exponent of the case was read from.
+std::string slope_figure_of(const FigureCase& c);
+
+// Writes every figure into `dir` in `formats` (png, svg, pdf); returns what could not be drawn.
+std::vector<std::string> write_figures(const FiguresPlan& plan,
+                                       const std::vector<CaseResult>& results,
+                                       const Crossovers& crossovers,
+                                       const std::filesystem::path& dir,
+                                       const std::vector<std::string>& formats);
+
+// x to `digits` significant digits, "n/a" when not finite: numbers in figure keys and reports.
+std::string figure_number(double x, int digits = 4);
+
+}  // namespace gs::jobs

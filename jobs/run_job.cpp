@@ -1,0 +1,334 @@
+#include "jobs/run_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/json.h"
+#include "apps/cli.h"
+#include "apps/exit_code.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
+#include "io/snapshot_file.h"
+#include "io/trajectory.h"
+#include "jobs/movie.h"
+#include "jobs/progress.h"
+#include "render/field.h"
+#include "render/png.h"
+#include "render/renderer.h"
+#include "sim/error.h"
+#include "sim/format.h"
+#include "sim/stop.h"
+
+namespace gs::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Fig. 1 of the paper, in its time unit 1/(v0 n^(1/d)): r = 0.1 at t = 5000, 10000, 20000 and
+// 50000 (a), and r = 1 at t = 25000 (b).
+constexpr double kFig1Times[] = {5000, 10000, 20000, 50000};
+
+// What a run writes; --force clears these (and nothing else) before a new run.
+constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary.json",
+                                       "timing.json", "checkpoint.bin", "checkpoint.prev.bin",
+                                       "movie.mp4",   "movie.parts",    "snapshots",
+                                       "frames"};
+
+// The stages of a job after sampling, kept in checkpoints: a resume redoes the unfinished one.
+enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1 };
+
+std::string times_toml(const std::vector<double>& times) {
+  std::string s = "[";
+  for (std::size_t k = 0; k < times.size(); ++k) s += (k ? ", " : "") + format_double(times[k]);
+  return s + "]";
+}
+
+std::string summary_json(const RunOptions& o, const Simulation& sim, bool interrupted) {
+  const PhysicsConfig& p = o.plan.physics;
+  const auto& st = sim.stats();
+  const Sample s = sim.sample();
+  std::ostringstream j;
+  j << "{\n"
+    << "  \"version\": \"" << GRAINSHOCK_VERSION << "\",\n"
+    << "  \"dim\": " << p.dim << ",\n"
+    << "  \"particles\": " << p.particles << ",\n"
+    << "  \"density\": " << json_number(p.density) << ",\n"
+    << "  \"restitution\": " << json_number(p.restitution) << ",\n"
+    << "  \"cutoff\": " << json_number(p.cutoff) << ",\n"
+    << "  \"seed\": " << p.seed << ",\n"
+    << "  \"realisation\": " << p.realisation << ",\n"
+    << "  \"initial\": \"" << to_string(p.initial) << "\",\n"
+    << "  \"t_end\": " << json_number(sim.time()) << ",\n"
+    << "  \"t_end_paper\": " << json_number(p.paper_time(sim.time())) << ",\n"
+    << "  \"interrupted\": " << (interrupted ? "true" : "false") << ",\n"
+    << "  \"events\": " << st.events << ",\n"
+    << "  \"collisions\": " << st.collisions << ",\n"
+    << "  \"inelastic_collisions\": " << st.inelastic << ",\n"
+    << "  \"cell_crossings\": " << st.crossings << ",\n"
+    << "  \"stale_events\": " << st.stale << ",\n"
+    << "  \"overlaps\": " << st.overlaps << ",\n"
+    << "  \"max_overlap\": " << json_number(st.max_overlap) << ",\n"
+    << "  \"active\": " << s.active << ",\n"
+    << "  \"energy\": " << json_number(s.energy) << ",\n"
+    << "  \"radius_rms\": " << json_number(s.radius_rms) << ",\n"
+    << "  \"speed_rms\": " << json_number(s.speed_rms) << "\n"
+    << "}\n";
+  return j.str();
+}
+
+// Wall times, apart from summary.json so that it is the same file on every run.
+std::string timing_json(const RunTiming& t, double after_s, const Simulation& sim) {
+  std::ostringstream j;
+  const double collisions = static_cast<double>(sim.stats().collisions);
+  j << "{\n"
+    << "  \"setup_seconds\": " << json_number(t.setup) << ",\n"
+    << "  \"run_seconds\": " << json_number(t.run) << ",\n"
+    << "  \"snapshot_seconds\": " << json_number(t.snapshots) << ",\n"
+    << "  \"checkpoint_seconds\": " << json_number(t.checkpoints) << ",\n"
+    << "  \"checkpoints\": " << t.checkpoints_written << ",\n"
+    << "  \"pictures_and_movie_seconds\": " << json_number(after_s) << ",\n"
+    << "  \"collisions_per_second\": " << json_number(t.run > 0 ? collisions / t.run : 0) << "\n"
+    << "}\n";
+  return j.str();
+}
+
+// One colour range for all pictures of a run, so that a colour means one value in every frame:
+// the field's fixed range, else the union of the frames' robust (1st-99th percentile) ranges.
+std::pair<double, double> common_range(const std::vector<Snapshot>& snaps,
+                                       const render::Style& style) {
+  if (snaps.empty()) return {0.0, 1.0};
+  if (const auto fixed = render::default_range(style.field, snaps.front().info.dim)) return *fixed;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& s : snaps) {
+    if (std::find(s.active.begin(), s.active.end(), 1) == s.active.end()) continue;
+    const auto r = render::auto_range(render::field_values(s, style.field), s.active, style.scale,
+                                      style.percentile_low, style.percentile_high);
+    lo = std::min(lo, r.first);
+    hi = std::max(hi, r.second);
+  }
+  if (!(lo < hi)) return {0.0, 1.0};
+  return {lo, hi};
+}
+
+std::string png_name(const std::string& stem, double t) {
+  return stem + time_stem(t) + ".png";
+}
+
+// The style of a run's pictures: scaled speed for a kick, with the profile across the band.
+render::Style picture_style(const PhysicsConfig& c) {
+  render::Style style;
+  style.field = c.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;
+  style.scale = render::parse_scale("auto", style.field);
+  style.inset = true;
+  return style;
+}
+
+render::View picture_view(const RunOptions& o) {
+  render::View view;
+  view.width = o.width;
+  view.height = o.height;
+  if (o.plan.physics.dim == 3) view.slab = 6;  // a cut through the shell shows the band itself
+  return view;
+}
+
+// Fig. 1-style pictures: each snapshot coloured on a shared scale, and (with two or more) the
+// overlay of all times, one colour per time, as in Fig. 1(a). They are drawn from the snapshot
+// files, so that a resumed run draws the same pictures. False if stopped.
+bool write_pictures(const fs::path& dir, const RunOptions& o) {
+  fs::create_directories(dir / "frames");
+  std::vector<Snapshot> snaps;
+  for (double t : snapshot_times(o.plan))
+    snaps.push_back(
+        read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
+  render::Renderer renderer;
+  render::Style style = picture_style(o.plan.physics);
+  style.range = common_range(snaps, style);
+  const render::View view = picture_view(o);
+  for (const auto& s : snaps) {
+    if (stop_requested()) return false;
+    render::write_png((dir / "frames" / png_name("", s.info.time)).string(),
+                      renderer.render(s, style, view), render::png_text(s.info, s.size()));
+  }
+  if (snaps.size() < 2 || stop_requested()) return !stop_requested();
+  std::vector<const Snapshot*> all;
+  for (const auto& s : snaps) all.push_back(&s);
+  render::write_png((dir / "frames" / "overlay.png").string(), renderer.render(all, style, view),
+                    render::png_text(snaps.back().info, snaps.back().size()));
+  return true;
+}
+
+// Fig. 1(b): the same gas, kicked the same way, with elastic collisions, at half the final time.
+// False if stopped.
+bool write_elastic_comparison(const fs::path& dir, const RunOptions& o) {
+  PhysicsConfig c = o.plan.physics;
+  c.restitution = 1.0;
+  c.t_max = 0.5 * o.plan.physics.t_max;
+  if (!o.quiet) std::fprintf(stderr, "grainshock: elastic comparison (r = 1) to t = %g\n", c.t_max);
+  auto sim = make_simulation(c);
+  while (sim->time() < c.t_max) {
+    sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
+    if (stop_requested()) return false;
+  }
+  const Snapshot s = sim->snapshot();
+  write_snapshot(
+      (dir / "snapshots" / ("elastic_" + snapshot_name(c.t_max, o.plan.snapshots.format))).string(),
+      s, o.plan.snapshots);
+  fs::create_directories(dir / "frames");
+  render::Renderer renderer;
+  render::write_png((dir / "frames" / png_name("elastic_", c.t_max)).string(),
+                    renderer.render(s, picture_style(c), picture_view(o)),
+                    render::png_text(s.info, s.size()));
+  return true;
+}
+
+// Every snapshot time in one file, read back from the snapshot files (so that a resumed run
+// writes the same trajectory).
+void write_trajectory(const fs::path& dir, const RunOptions& o) {
+  const auto out = open_trajectory((dir / o.trajectory).string(), trajectory_format(o.trajectory));
+  for (double t : snapshot_times(o.plan))
+    out->add(
+        read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
+  out->finish();
+}
+
+bool finished_run(const fs::path& dir) {
+  std::ifstream f(dir / "summary.json");
+  std::stringstream text;
+  text << f.rdbuf();
+  return text.str().find("\"interrupted\": false") != std::string::npos;
+}
+
+}  // namespace
+
+void use_fig1_job(RunOptions& o) {
+  const double to_sim = 1 / o.plan.physics.paper_time(1.0);
+  o.plan.physics.t_max = kFig1Times[3] * to_sim;
+  o.plan.snapshot_times.clear();
+  for (double t : kFig1Times) o.plan.snapshot_times.push_back(t * to_sim);
+  o.png = o.compare_elastic = o.movie = o.movie_inset = true;
+}
+
+std::string run_toml(const RunOptions& o) {
+  std::ostringstream t;
+  t << "# grainshock run: every setting that shapes the results.\n"
+    << "# Again: grainshock run --config run.toml --out NEW; continue: grainshock resume DIR\n"
+    << to_toml(o.plan.physics) << "per-decade = " << o.plan.per_decade << "\n"
+    << "sample-every = " << format_double(o.plan.sample_every) << "\n"
+    << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
+    << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
+    << "snapshot-times = " << times_toml(o.plan.snapshot_times) << "\n"
+    << "png = " << (o.png ? "true" : "false") << "\n"
+    << "compare-elastic = " << (o.compare_elastic ? "true" : "false") << "\n"
+    << "movie = " << (o.movie ? "true" : "false") << "\n"
+    << "movie-inset = " << (o.movie_inset ? "true" : "false") << "\n"
+    << "width = " << o.width << "\n"
+    << "height = " << o.height << "\n"
+    << "trajectory = \"" << o.trajectory << "\"\n";
+  return t.str();
+}
+
+RunResult run_job(const RunOptions& o, bool resume) {
+  check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
+  if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
+    throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
+  if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
+  FrontMovieOptions movie;
+  movie.quiet = o.quiet;
+  movie.progress = o.progress;
+  movie.inset = o.movie_inset;
+  if (o.movie) check_front_movie(o.plan.physics, movie);
+
+  const std::string spec = run_toml(o);
+  // Before the set-up, so that Ctrl-C during it stops the run at its first checkpoint.
+  install_stop_handlers();
+  fs::path dir;
+  std::unique_ptr<RunLoop> loop;
+  if (resume) {
+    dir = o.out;
+    if (finished_run(dir)) {
+      // summary.json is a run's last result: a kill after it, before the checkpoints were
+      // removed, leaves a finished run with checkpoints, which only need removing.
+      if (!fs::exists(RunLoop::checkpoint_path(dir)) &&
+          !fs::exists(RunLoop::previous_checkpoint_path(dir)))
+        throw UserError("'" + dir.string() +
+                        "' holds a finished run (summary.json): nothing to resume");
+      lock_output_dir(dir);
+      fs::remove(RunLoop::checkpoint_path(dir));
+      fs::remove(RunLoop::previous_checkpoint_path(dir));
+      if (!o.quiet)
+        std::fprintf(stderr, "grainshock: %s had finished; its leftover checkpoints are removed\n",
+                     dir.c_str());
+      return {};
+    }
+    lock_output_dir(dir);
+    loop = RunLoop::resume(o.plan, dir, spec);
+    remove_leftovers(dir);
+    // The snapshot a stop wrote of its moment is not one of the run's.
+    const double t = loop->simulation().time();
+    const auto scheduled = snapshot_times(o.plan);
+    if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
+      fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
+  } else {
+    std::vector<const char*> replaced(std::begin(kRunOutputs), std::end(kRunOutputs));
+    if (!o.trajectory.empty()) replaced.push_back(o.trajectory.c_str());
+    dir = prepare_output_dir(o.out, o.force, replaced);
+    lock_output_dir(dir);
+    remove_leftovers(dir);
+    write_file_atomic(dir / "run.toml", spec);
+    loop = std::make_unique<RunLoop>(o.plan, dir, spec);
+  }
+  loop->checkpoint_every = o.checkpoint_every;
+
+  const double t_max = o.plan.physics.t_max;
+  bool stopped = false;
+  if (loop->stage() == kSampling) {
+    const auto progress_line = open_progress(o.progress);
+    ProgressLine& progress = *progress_line;
+    const auto t1 = std::chrono::steady_clock::now();
+    const auto events0 = loop->simulation().stats().events;
+    loop->on_sample = [&](const Sample& s) {
+      char what[160];
+      std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
+                    static_cast<long long>(s.active),
+                    static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
+      progress.update(s.t / t_max, what);
+    };
+    stopped = !loop->run();
+    progress.done();
+    if (stopped) {  // a look at the data may want the moment too; a resume removes it
+      const Snapshot s = loop->simulation().snapshot();
+      write_snapshot(
+          (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
+          o.plan.snapshots);
+    } else {
+      loop->set_stage(kAfterSampling);
+      loop->write_checkpoint();
+    }
+  }
+  const auto t2 = std::chrono::steady_clock::now();
+  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
+  if (!stopped && o.png) stopped = !write_pictures(dir, o);
+  if (!stopped && o.compare_elastic) stopped = !write_elastic_comparison(dir, o);
+  if (!stopped && o.movie) {
+    // Runs are reproducible from (config, seed): the movie replays this very trajectory.
+    if (!o.quiet) std::fprintf(stderr, "grainshock: movie of the front\n");
+    stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
+  }
+  loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
+  const Simulation& sim = loop->simulation();
+  write_file_atomic(dir / "timing.json", timing_json(loop->timing(), seconds_since(t2), sim));
+  write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
+  if (!stopped) loop->remove_checkpoints();
+  if (!o.quiet)
+    std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
+                 stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
+                 static_cast<long long>(sim.stats().collisions), loop->timing().run, dir.c_str(),
+                 stopped ? " (continue with: grainshock resume DIR)" : "");
+  return {.stopped = stopped};
+}
+
+}  // namespace gs::jobs

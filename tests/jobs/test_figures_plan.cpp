@@ -1,0 +1,114 @@
+// The plan of `grainshock figures` against issue 21's requirements on what it runs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "jobs/figures_plan.h"
+
+namespace gs::jobs {
+namespace {
+
+std::vector<const FigureCase*> of_role(const FiguresPlan& p, CaseRole role) {
+  std::vector<const FigureCase*> out;
+  for (const auto& c : p.cases)
+    if (c.role == role) out.push_back(&c);
+  return out;
+}
+
+TEST(FiguresPlan, Phi1RestsOnSixRestitutionsInBothDimensions) {
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full})
+    for (int d : {2, 3}) {
+      std::set<double> r;
+      for (const FigureCase* c : of_role(figures_plan(m, 1), CaseRole::Paper))
+        if (c->spec.physics.dim == d && c->spec.physics.restitution < 1) {
+          r.insert(c->spec.physics.restitution);
+          EXPECT_GE(c->spec.realisations, 2u) << c->name;  // bootstrap intervals need two
+        }
+      EXPECT_GE(r.size(), 6u) << to_string(m) << " d = " << d;
+      EXPECT_NE(find_case(figures_plan(m, 1), d, 1.0), nullptr);
+    }
+}
+
+TEST(FiguresPlan, Full3DReachesTheEnergyPlateauAtLargeRWithoutWrapping) {
+  // Measured (4e6 spheres, delta = 1e-6, 2 realisations each): E_t's local slope plateaus from
+  // t ~ 2e4 at r = 0.7-0.85, and the plateau rule needs 0.5 decade of it; the fastest front
+  // (r = 0.9) is at 76 at t = 6.3e4 and grows as t^0.29. Without the smaller cutoff the slope
+  // turns back up from ~3e4 (t_c2), so every 3D r < 1 runs with delta <= 1e-6.
+  std::set<double> long_runs;
+  for (const FigureCase* c : of_role(figures_plan(FiguresMode::Full, 1), CaseRole::Paper)) {
+    const auto& p = c->spec.physics;
+    if (p.dim != 3 || p.restitution >= 1) continue;
+    EXPECT_LE(p.cutoff, 1e-6) << c->name;
+    if (p.restitution < 0.7 || p.restitution > 0.85) continue;
+    long_runs.insert(p.restitution);
+    EXPECT_GE(p.t_max, 2e4 * std::pow(10.0, 0.5)) << c->name;
+    const double half_box = 0.5 * std::cbrt(double(p.particles) / p.density);
+    EXPECT_LE(76 * std::pow(p.t_max / 6.3e4, 0.29), 0.7 * half_box) << c->name;
+  }
+  EXPECT_EQ(long_runs.size(), 3u);  // 0.7, 0.8, 0.85: with 0.1, 0.3, 0.5 the six values of phi1
+}
+
+TEST(FiguresPlan, DeltaScanHasFourCutoffsWhoseTc2FallsInsideTheRuns) {
+  // t_c2 ~ delta^-3/2 (the paper's phi2 in 2D), anchored at t_c2 = 2.2e4 measured for delta =
+  // 5e-4 (--quick, 12 realisations); the measured phi2 (~1.55) moves it by < 10% over these
+  // cutoffs. A t_c2 is usable when it comes well after t_c1 ~ 1e3 (3x) and the run goes on for
+  // >= 3 t_c2, so that the slope is above the band at the end.
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    std::set<double> cutoffs;
+    for (const FigureCase* c : of_role(figures_plan(m, 1), CaseRole::DeltaScan)) {
+      const auto& p = c->spec.physics;
+      EXPECT_EQ(p.dim, 2);
+      EXPECT_EQ(p.restitution, 0.1);
+      const double tc2 = 2.2e4 * std::pow(p.cutoff / 5e-4, -1.5);
+      EXPECT_GE(tc2, 3e3) << c->name;
+      EXPECT_GE(p.t_max, 3 * tc2) << c->name;
+      EXPECT_TRUE(c->delta_scan);
+      cutoffs.insert(p.cutoff);
+    }
+    EXPECT_GE(cutoffs.size(), 4u) << to_string(m);
+  }
+}
+
+TEST(FiguresPlan, FullRunsTheLargeElasticBlast) {
+  const auto large = of_role(figures_plan(FiguresMode::Full, 1), CaseRole::Elastic3D);
+  ASSERT_EQ(large.size(), 1u);
+  const auto& p = large.front()->spec.physics;
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.restitution, 1.0);
+  EXPECT_GE(p.particles, 4000000);  // issue 21: N >= 4e6 to t >= 2e4
+  EXPECT_GE(p.t_max, 2e4);
+}
+
+TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
+  // Issue 33: at delta = 1e-4 the 2D N_t slope drifts into the delta crossover before t_max.
+  // t_c2 ~ 2.2e4 (5e-4 / delta)^(3/2) (measured in the delta scan, 2D r = 0.1) must come at
+  // least 10 times after every 2D r < 1 paper run; 3D keeps 1e-6 (its E_t slope turns at 1e-4).
+  // The delta scan keeps its larger cutoffs.
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    const FiguresPlan plan = figures_plan(m, 1);
+    for (const FigureCase* c : of_role(plan, CaseRole::Paper)) {
+      const auto& p = c->spec.physics;
+      if (p.restitution >= 1) continue;
+      if (p.dim == 3) {
+        EXPECT_LE(p.cutoff, 1e-6) << c->name;
+      } else if (p.dim == 2) {
+        EXPECT_GE(2.2e4 * std::pow(5e-4 / p.cutoff, 1.5), 10 * p.t_max) << c->name;
+      }
+    }
+    for (const FigureCase* c : of_role(plan, CaseRole::DeltaScan))
+      EXPECT_GE(c->spec.physics.cutoff, 1e-4) << c->name;
+    EXPECT_TRUE(of_role(plan, CaseRole::Long3D).empty());
+    const auto with = of_role(figures_plan(m, 1, true), CaseRole::Long3D);
+    ASSERT_EQ(with.size(), 2u);
+    for (const FigureCase* c : with) {
+      EXPECT_EQ(c->spec.physics.dim, 3);
+      EXPECT_LE(c->spec.physics.cutoff, 1e-6);
+      EXPECT_GE(c->spec.physics.t_max, 1e6);
+      EXPECT_GE(c->spec.realisations, 16u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gs::jobs
