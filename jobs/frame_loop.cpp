@@ -10,28 +10,17 @@
 #include "render/field.h"
 
 namespace gs::jobs {
-namespace {
-
-// Points the renderer's view at a shot. 2D: the zoom that turns the renderer's fitted framing of
-// this frame into the shot's width; 3D: an explicit camera distance.
-void aim(render::View& view, const render::Shot& shot, const Snapshot& s, const FrameScan& f) {
+void aim(render::View& view, const render::Shot& shot, int dim) {
   view.centre = shot.centre;
-  if (s.info.dim == 3) {
+  view.zoom = 1;
+  if (dim == 3) {
     const double tan_y = std::tan(view.fov * std::numbers::pi / 360);
     const double tan_x = tan_y * view.width / view.height;
     view.distance = shot.half / std::sin(std::atan(std::min(tan_x, tan_y)));
-    view.zoom = 1;
     return;
   }
-  render::View fitted = view;
-  fitted.zoom = 1;
-  double r_max = 0;
-  for (double r : s.radius) r_max = std::max(r_max, r);
-  const render::Camera base = render::make_camera_2d(f.fit, r_max, fitted);
-  view.zoom = base.half_w / shot.half;
+  view.half_width = shot.half;
 }
-
-}  // namespace
 
 FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   FrameScan f;
@@ -114,7 +103,7 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       const FrameScan f = p.plan.follow || cut ? scan(snap, style, false) : FrameScan{};
       if (p.plan.follow) {
         if (!follow) follow.emplace(make_follow(snap.info.dim, view, o));
-        aim(view, follow->next(f.front, f.radius), snap, f);
+        aim(view, follow->next(f.front, f.radius), snap.info.dim);
       } else if (cut) {
         // A fixed camera sees the wrapped box: the cut goes through the front's wrapped centre.
         Eigen::Vector3d c = f.front.center();

@@ -75,6 +75,10 @@ class KeptFrames {
 
 // The following camera as a movie of these options makes it.
 render::FollowCamera make_follow(int dim, const render::View& view, const FrontMovieOptions& o);
+// Points the renderer's view at a shot of it. 2D: the shot's half width, which the scene fits
+// into the part of the frame the colour bar leaves free (View::half_width); 3D: an explicit
+// camera distance.
+void aim(render::View& view, const render::Shot& shot, int dim);
 
 // The second pass, the one frame loop of every movie: aims the camera (`follow`, made at the
 // first frame unless a resumed movie brings its own), renders, encodes. A stopped movie that

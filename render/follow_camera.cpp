@@ -20,10 +20,12 @@ Shot FollowCamera::next(const Eigen::AlignedBox3d& front, double radius) {
   const Eigen::Vector3d c = shot.centre;
   const Eigen::Vector3d reach =
       (front.max() - c).cwiseMax(c - front.min()) + Eigen::Vector3d::Constant(0.5);
-  const double pad = 1 + margin_;
+  // 2D: the stills' margin (View::margin of the front's larger extent on every side), so a
+  // movie's frame leaves the same free border around the front as a still of it.
   const double sphere = radius + (front.center() - c).norm() + 0.5;
-  const double need =
-      dim_ == 3 ? sphere * pad : std::max(reach.x() * pad, reach.y() * pad * aspect_);
+  const double free = margin_ * 2 * std::max(reach.x(), reach.y());
+  const double need = dim_ == 3 ? sphere * (1 + margin_)
+                                : std::max(reach.x() + free, (reach.y() + free) * aspect_);
   half_ = std::max({half_, need, min_half});
   shot.half = half_;
   return shot;

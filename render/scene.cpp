@@ -150,7 +150,8 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   // right: it is fitted into the rest of the width. A 2D legend goes above the scene instead
   // when that leaves more room (square or tall pictures, a legend too wide to sit beside it).
   int reserve = 0, reserve_top = 0, reserve_left = 0;
-  if (!view.centre) {
+  const bool shot = !three_d && view.centre && view.half_width > 0;
+  if (!view.centre || shot) {
     if (sc.inset) reserve_left = painter.inset_width(view.width, view.height);
     if (sc.style.colorbar && !overlay)
       reserve = painter.colorbar_width(view.width, view.height, sc.range, style.scale, sc.bar_label,
@@ -227,6 +228,13 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     open_area.width -= narrow_by;
     open_area.height -= reserve_top;
     cam = make_camera_2d(fit, r_max, open_area);
+    if (shot) {
+      const double half_h = view.half_width * view.height / view.width;
+      const double ppu_shot =
+          std::min(open_area.width / (2 * view.half_width), open_area.height / (2 * half_h));
+      cam.half_w = open_area.width / (2 * ppu_shot);
+      cam.half_h = open_area.height / (2 * ppu_shot);
+    }
     const double ppu = cam.pixels_per_unit();
     if (narrow_by > 0) {
       cam.width = view.width;

@@ -16,6 +16,11 @@ struct View {
   // the fitted (or box) framing.
   std::optional<Eigen::Vector3d> centre;
   double zoom = 1;
+  // 2D, with a centre, > 0: show this half width about the centre (the following camera's shot)
+  // instead of the fit and zoom. Such a shot is kept clear of the colour bar, legend and inset
+  // as fitted stills are: the box of half_width by half_width * height / width is fitted into
+  // the part of the picture they leave free, its centre in the middle of that part.
+  double half_width = 0;
   // 3D camera, angles in degrees; distance 0 means fitted.
   double azimuth = 30, elevation = 20, distance = 0, fov = 30;
   // 3D: keep only particles whose centres lie within slab/2 of the plane through the centre
