@@ -32,5 +32,7 @@ void add_io_cases(std::vector<Case>& cases);
 // CPU seconds of this process (user + system), for "per CPU-second" figures.
 double cpu_seconds();
 double wall_seconds();
+// The machine's 1-minute load average (getloadavg), reported beside wall-clock rates.
+double load_average();
 
 }  // namespace gs::bench
