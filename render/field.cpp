@@ -9,25 +9,33 @@ namespace gs::render {
 
 std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
                                  const std::string& column) {
+  std::vector<double> v;
+  field_values(s, f, v_rms, column, v);
+  return v;
+}
+
+void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& column,
+                  std::vector<double>& v) {
   const std::size_t n = s.size();
-  std::vector<double> v(n);
+  v.resize(n);  // every value is written below
   if (v_rms) *v_rms = 0;
   if (f == Field::None) {
     v.assign(n, 0.5);
-    return v;
+    return;
   }
   if (f == Field::Column) {
     const Column* c = s.column(column);
     if (!c) throw UserError("snapshot has no column '" + column + "'; cannot colour by it");
     GS_CHECK(c->values.size() == n);
-    return c->values;
+    v = c->values;
+    return;
   }
   if (f == Field::FirstCollision) {
     if (n > 0 && s.first_collision.size() != n)
       throw UserError("snapshot has no first_collision column; cannot colour by first collision");
     for (std::size_t i = 0; i < n; ++i)
       v[i] = s.first_collision[i] < 0 ? std::nan("") : s.first_collision[i];
-    return v;
+    return;
   }
   if (n > 0 && !s.has_velocity())
     throw UserError(std::string("snapshot has no velocities (velo); cannot colour by ") +
@@ -49,7 +57,7 @@ std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
       v[i] = len > 0 ? (s.velocity[i] - drift).dot(r) / len : 0;
     }
   }
-  if (!is_scaled(f)) return v;
+  if (!is_scaled(f)) return;
   double sum = 0;
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -61,7 +69,6 @@ std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
   if (v_rms) *v_rms = rms;
   if (rms > 0)
     for (double& x : v) x /= rms;
-  return v;
 }
 
 Field default_field(const Snapshot& s) {
