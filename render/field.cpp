@@ -113,6 +113,8 @@ Field choose_field(const std::string& name, const Snapshot& s, const std::string
                   list);
 }
 
+constexpr double kDegenerateSpread = 1e-3;
+
 std::pair<double, double> auto_range(const std::vector<double>& values,
                                      const std::vector<std::uint8_t>& mask, Scale scale, double plo,
                                      double phi) {
@@ -127,16 +129,18 @@ std::pair<double, double> auto_range(const std::vector<double>& values,
     std::nth_element(x.begin(), x.begin() + k, x.end());
     return x[k];
   };
-  double lo = pick(std::clamp(plo, 0.0, 100.0)), hi = pick(std::clamp(phi, 0.0, 100.0));
-  if (!(hi > lo)) {
-    if (scale == Scale::Log) {
-      lo /= 2, hi *= 2;
-    } else {
-      const double w = std::max(std::abs(lo) * 0.05, 1e-9);
-      lo -= w, hi += w;
-    }
+  const double lo = pick(std::clamp(plo, 0.0, 100.0)), hi = pick(std::clamp(phi, 0.0, 100.0));
+  // A spread below 1e-3 of the values is below what the colour bar's three-digit labels can
+  // show, and in a file written to six decimals (a ring of one speed) it is round-off: stretched
+  // over the colour map it would paint noise. Such a range is one value, shown in one colour.
+  if (scale == Scale::Log) {
+    if (hi > lo * (1 + kDegenerateSpread)) return {lo, hi};
+    const double c = std::sqrt(lo * hi);
+    return {c / 2, c * 2};
   }
-  return {lo, hi};
+  if (hi - lo > kDegenerateSpread * std::max(std::abs(lo), std::abs(hi))) return {lo, hi};
+  const double c = lo / 2 + hi / 2, w = std::max(std::abs(c) * 0.05, 1e-9);
+  return {c - w, c + w};
 }
 
 double normalise(double v, std::pair<double, double> range, Scale scale) {
