@@ -128,6 +128,16 @@ TEST(EffectiveExponent, SlopeClimbingAcrossACrossoverGivesAWindowEndingBeforeIt)
   PlateauOptions loose;
   loose.z = 30;
   EXPECT_GT(find_plateau(band, loose).window.t_hi, tc);
+  // For an asymptotic exponent that window is a transient: the slope leaves it and drifts on for
+  // most of a decade, so the fits' rule (asymptotic_plateau) says there is no plateau and why.
+  const Plateau late = find_plateau(band, asymptotic_plateau());
+  EXPECT_FALSE(late.found);
+  EXPECT_NE(late.note.find("transient"), std::string::npos) << late.note;
+  // A flat slope to the end still passes it.
+  const auto flat = ensemble_of(t, [](double s) { return std::pow(s, 2.0 / 3.0); }, 20, 13, 0.005);
+  const Plateau whole = find_plateau(local_slope_band(t, flat), asymptotic_plateau());
+  ASSERT_TRUE(whole.found) << whole.note;
+  EXPECT_NEAR(whole.exponent, 2.0 / 3.0, 0.01);
 }
 
 TEST(EffectiveExponent, SlopeThatDipsAndRecoversIsNoPlateauAcrossTheDip) {
