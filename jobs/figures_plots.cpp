@@ -434,21 +434,32 @@ std::string slope_figure_of(const FigureCase& c) {
 Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
-    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}};
-    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}};
+    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}, {}};
+    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}, {}};
+    std::vector<EnergyCurves> curves;
     for (const CaseResult* c : cases_of(results, d, false)) {
       const double r = c->plan->spec.physics.restitution;
+      EnergyCurves ec;
+      ec.control = 1 - r * r;
+      ec.label = "r = " + rtext(r);
+      ec.t = c->sums.timeseries().column("t");
+      for (const auto& [k, cv] : c->sums.curves()) ec.realisations.push_back(cv[1]);  // energy
+      ec.e0 = 0.5 * c->plan->spec.physics.speed * c->plan->spec.physics.speed;
+      if (!ec.realisations.empty()) curves.push_back(std::move(ec));
       energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
       theory_b.points.push_back(
           {1 - r * r, "r = " + rtext(r), c->fits.tc1_theory_b, c->fits.tc1_theory_b_draws});
     }
     energy.fit = fit_crossover_points(energy.points);
     energy.local = local_crossover_exponents(energy.points);
+    Phi1Options po;
+    po.seed = 1 + std::uint64_t(d);
+    energy.energy = phi1_readings(curves, po);
     theory_b.fit = fit_crossover_points(theory_b.points);
     x.tc1.push_back(std::move(energy));
     x.tc1_theory_b.push_back(std::move(theory_b));
   }
-  CrossoverSet scan{2, "", {}, {}, false, {}};
+  CrossoverSet scan{2, "", {}, {}, false, {}, {}};
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;

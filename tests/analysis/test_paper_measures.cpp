@@ -469,3 +469,40 @@ TEST(EnsembleFits, AWindowWithoutAPlateauIsRefusedSayingWhereItPlateaus) {
 
 }  // namespace
 }  // namespace gs
+
+namespace gs {
+namespace {
+
+TEST(CrossoverExponents, DeclaredPhi1IsTheCollapseOfThePairNearestTheLimit) {
+  auto reading = [](std::string from, std::string to, double level, double phi) {
+    Phi1Reading p;
+    p.from = std::move(from);
+    p.to = std::move(to);
+    p.level = level;
+    p.phi = phi;
+    p.ci_lo = phi - 0.1;
+    p.ci_hi = phi + 0.1;
+    return p;
+  };
+  const double nan = std::nan("");
+  std::vector<Phi1Reading> readings = {reading("r = 0.7", "r = 0.8", nan, 1.5),
+                                       reading("r = 0.7", "r = 0.8", 0.1, 1.6),
+                                       reading("r = 0.8", "r = 0.9", nan, 2.3),
+                                       reading("r = 0.8", "r = 0.9", 0.1, nan)};
+  const Comparison c = phi1_energy_comparison(2, readings, nan);
+  EXPECT_TRUE(c.counted);
+  EXPECT_DOUBLE_EQ(c.measured, 2.3);  // the last pair, not the first
+  EXPECT_NEAR(c.uncertainty, 0.1, 1e-12);
+  EXPECT_TRUE(c.agrees());  // 2.25 within the tolerance
+  // A level the last pair does not reach falls back to the nearest pair that does.
+  const Comparison l = phi1_energy_comparison(2, readings, 0.1);
+  EXPECT_FALSE(l.counted);
+  EXPECT_DOUBLE_EQ(l.measured, 1.6);
+  EXPECT_NE(l.note.find("r = 0.7"), std::string::npos);
+  // 3D's 3.0 is not 2.3: a wrong phi1 disagrees.
+  EXPECT_FALSE(phi1_energy_comparison(3, readings, nan).agrees());
+  EXPECT_FALSE(phi1_energy_comparison(2, {}, nan).measured_ok());
+}
+
+}  // namespace
+}  // namespace gs
