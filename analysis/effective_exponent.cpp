@@ -145,6 +145,9 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     return v;
   };
 
+  std::size_t last_usable = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (usable[i]) last_usable = i;
   Plateau p;
   bool any_window = false;
   Verdict closest{};
@@ -162,6 +165,16 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
       any_window = true;
       const Thirds w{a, i1, i2, b};
       const Verdict v = judge(w);
+      if (v.excess <= 0 && x[last_usable] - x[b] > o.max_end_gap_decades * std::numbers::ln10) {
+        p.note = "no plateau within the run: the latest window that passes the rule, [" +
+                 short_text(t[a]) + ", " + short_text(t[b]) + "] (slope " +
+                 short_text(Thirds::mean(mean_prefix, a, b + 1)) + "), ends " +
+                 short_text((x[last_usable] - x[b]) / std::numbers::ln10) +
+                 " decades before the last usable sample (t = " + short_text(t[last_usable]) +
+                 ", slope " + short_text(band.slope[last_usable]) +
+                 "): a transient the slope leaves, not the asymptotic regime";
+        return p;
+      }
       if (v.excess <= 0) {
         p.found = true;
         p.window = {t[a], t[b]};

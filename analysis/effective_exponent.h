@@ -56,7 +56,20 @@ struct PlateauOptions {
   double min_decades = 0.5;
   double t_min = 0;  // only samples in [t_min, t_max]
   double t_max = std::numeric_limits<double>::infinity();
+  // The latest plateau must end within this many decades of the last usable sample; one that
+  // ends earlier is a transient the slope leaves (every later window failed the rule), not the
+  // asymptotic regime, and is reported as no plateau (issue 33: 3D N_t's [32, 562] of --quick,
+  // the elastic build-up, while the slope drifts on for 1.7 decades). Infinity: any window.
+  double max_end_gap_decades = std::numeric_limits<double>::infinity();
 };
+
+// The plateau of an asymptotic exponent: ending at most 0.3 decade (three smoothing half widths
+// of the local slope, so at least one independent slope value) before the last usable sample.
+inline PlateauOptions asymptotic_plateau() {
+  PlateauOptions p;
+  p.max_end_gap_decades = 0.3;
+  return p;
+}
 
 struct Plateau {
   bool found = false;

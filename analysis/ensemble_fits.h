@@ -38,7 +38,7 @@ struct FitOptions {
   std::optional<Window> window;
   int resamples = 1000;      // of the fits
   int band_resamples = 200;  // of the local-slope bands and the crossover draws
-  PlateauOptions plateau;    // t_min is set from <N_t> >= 20
+  PlateauOptions plateau = asymptotic_plateau();  // t_min is set from <N_t> >= 20
 };
 
 // Throws UserError naming --window unless t_lo < t_hi and the window lies in the sampled range.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/crossover.h"
+#include "analysis/energy_scaling.h"
 #include "analysis/ensemble_fits.h"
 #include "analysis/realisation.h"
 
@@ -85,6 +86,12 @@ Comparison phi1_comparison(int d, const CrossoverExponentFit& fit, bool theory_b
 // phi1 from the pair of found points nearest the elastic limit (the last of `local`); not
 // measured when there is none.
 Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossoverExponent>& local);
+// phi1 from the energy curves (analysis/energy_scaling.h) of the pair nearest the elastic limit
+// that gives one: the collapse of E_t / E_0 when `level` is NaN (the declared phi1, counted:
+// it reads the divergence where the paper defines it and needs no plateau, which the 3D runs
+// do not reach), else the time to E_0 x level (sensitivity). The intersection rule's phi1
+// readings go to the sensitivity table beside them.
+Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& readings, double level);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
 std::string comparisons_json(const std::vector<Comparison>& cmp);

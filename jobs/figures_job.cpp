@@ -1,5 +1,6 @@
 #include "jobs/figures_job.h"
 
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <sstream>
@@ -140,6 +141,11 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
   for (const auto& set : x.tc1) cmp.push_back(phi1_comparison(set.d, set.fit, false));
   for (const auto& set : x.tc1_theory_b) cmp.push_back(phi1_comparison(set.d, set.fit, true));
   for (const auto& set : x.tc1) cmp.push_back(phi1_elastic_limit_comparison(set.d, set.local));
+  for (const auto& set : x.tc1) {
+    cmp.push_back(phi1_energy_comparison(set.d, set.energy, std::nan("")));
+    for (double level : Phi1Options{}.levels)
+      cmp.push_back(phi1_energy_comparison(set.d, set.energy, level));
+  }
   cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
   const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall};

@@ -279,7 +279,7 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
     }
   std::string gp = gnuplot_preamble(base, 1500, 900);
   gp += "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) +
-        "]\nset offsets 0, 0, graph 0.3, 0\n";
+        "]\n";
   gp +=
       "set multiplot layout 2,3 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
@@ -292,6 +292,23 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
     const int col = 3 + 3 * int(q);  // slope column
     const std::string name = enhanced(e.quantity);
     gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
+    // The y-range from the band over the last 1.5 decades (and the theory): the early slopes of
+    // the first collisions span far more and would flatten the part the exponent is read from.
+    double ylo = std::isfinite(e.theory) ? e.theory : std::numeric_limits<double>::infinity();
+    double yhi = std::isfinite(e.theory) ? e.theory : -std::numeric_limits<double>::infinity();
+    const double t_late = e.slope.t.back() / std::pow(10.0, 1.5);
+    for (std::size_t i = 0; i < e.slope.t.size(); ++i)
+      if (e.slope.t[i] >= t_late && std::isfinite(e.slope.lo[i]) && std::isfinite(e.slope.hi[i])) {
+        ylo = std::min(ylo, e.slope.lo[i]);
+        yhi = std::max(yhi, e.slope.hi[i]);
+      }
+    if (ylo < yhi) {
+      const double pad = std::max(0.3 * (yhi - ylo), 0.03);
+      gp += "set yrange [" + format_double(ylo - pad) + ":" + format_double(yhi + 1.5 * pad) +
+            "]\n";
+    } else {
+      gp += "set yrange [*:*]\n";
+    }
     std::string plot = "plot '" + base + ".csv' skip 1 using 1:" + std::to_string(col + 1) + ":" +
                        std::to_string(col + 2) +
                        " with filledcurves lc rgb '#6090d0' title '95% band', '' skip 1 using 1:" +
@@ -303,14 +320,15 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       plot += std::string(", ") + buf + " with lines " + theory_style(p.dim) + " title 'theory " +
               figure_number(e.theory, 3) + "'";
     }
-    if (std::isfinite(e.fit.exponent)) {
+    // The plateau fit is drawn only where a theory is compared (not on C_t of r < 1).
+    if (std::isfinite(e.fit.exponent) && std::isfinite(e.theory)) {
       char buf[300];
       std::snprintf(buf, sizeof buf, ", (x >= %.6g && x <= %.6g) ? %.6g : 1/0", e.fit.window.t_lo,
                     e.fit.window.t_hi, e.fit.exponent);
       plot += std::string(buf) + " with lines lw 5 lc rgb '#d06000' title 'fit " +
               figure_number(e.fit.exponent, 3) + " [" + figure_number(e.fit.ci_lo, 3) + ", " +
               figure_number(e.fit.ci_hi, 3) + "]'";
-    } else {
+    } else if (std::isfinite(e.theory)) {
       gp += "set label 1 'no plateau within the run' at graph 0.04, 0.08 left\n";
     }
     gp += plot + "\nunset label 1\n";
@@ -408,12 +426,15 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
       "set title 'Packing fraction of cells of side 10 holding band particles, weighted by "
       "their active particles (2D, last snapshot)'\n"
       "set xlabel 'cell packing fraction φ'\nset ylabel 'active-weighted density'\n"
-      "set xrange [0:1]\nset key at graph 0.98, graph 0.9 right top font ',10'\n"
+      // The key below the panel and a free strip above the data for the paper's labels: inside,
+      // the key covered the r = 0.7-0.9 peaks and the two labels overlapped (issue 33).
+      "set xrange [0:1]\nset yrange [0:*]\nset offsets 0, 0, graph 0.14, 0\n"
+      "set key below maxrows 4 font ',10'\nset bmargin 8\n"
       "set object 1 rect from 0.78, graph 0 to 0.82, graph 1 fc rgb '#c0c0c0' fs solid 0.4 "
       "noborder behind\n"
       "set arrow 1 from 0.47, graph 0 to 0.47, graph 1 nohead dt 2 lw 2 lc rgb 'black'\n"
-      "set label 2 'paper r < 1: 0.78-0.82' at 0.77, graph 0.95 right\n"
-      "set label 3 'paper r = 1: ~0.47' at 0.48, graph 0.95 left\n" +
+      "set label 2 'paper r < 1: 0.78-0.82' at 0.80, graph 0.96 center\n"
+      "set label 3 'paper r = 1: about 0.47' at 0.46, graph 0.96 right\n" +
       plot + "\n";
   return out.plot("fig9_packing.gp", gp);
 }
@@ -434,21 +455,32 @@ std::string slope_figure_of(const FigureCase& c) {
 Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
-    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}};
-    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}};
+    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}, {}};
+    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}, {}};
+    std::vector<EnergyCurves> curves;
     for (const CaseResult* c : cases_of(results, d, false)) {
       const double r = c->plan->spec.physics.restitution;
+      EnergyCurves ec;
+      ec.control = 1 - r * r;
+      ec.label = "r = " + rtext(r);
+      ec.t = c->sums.timeseries().column("t");
+      for (const auto& [k, cv] : c->sums.curves()) ec.realisations.push_back(cv[1]);  // energy
+      ec.e0 = 0.5 * c->plan->spec.physics.speed * c->plan->spec.physics.speed;
+      if (!ec.realisations.empty()) curves.push_back(std::move(ec));
       energy.points.push_back({1 - r * r, "r = " + rtext(r), c->fits.tc1, c->fits.tc1_draws});
       theory_b.points.push_back(
           {1 - r * r, "r = " + rtext(r), c->fits.tc1_theory_b, c->fits.tc1_theory_b_draws});
     }
     energy.fit = fit_crossover_points(energy.points);
     energy.local = local_crossover_exponents(energy.points);
+    Phi1Options po;
+    po.seed = 1 + std::uint64_t(d);
+    energy.energy = phi1_readings(curves, po);
     theory_b.fit = fit_crossover_points(theory_b.points);
     x.tc1.push_back(std::move(energy));
     x.tc1_theory_b.push_back(std::move(theory_b));
   }
-  CrossoverSet scan{2, "", {}, {}, false, {}};
+  CrossoverSet scan{2, "", {}, {}, false, {}, {}};
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;

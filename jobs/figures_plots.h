@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/energy_scaling.h"
 #include "analysis/ensemble_output.h"
 #include "analysis/paper.h"
 #include "jobs/figures_plan.h"
@@ -28,6 +29,9 @@ struct CrossoverSet {
   CrossoverExponentFit fit;
   bool open = false;  // drawn with open symbols: a reading beside the reported one
   std::vector<LocalCrossoverExponent> local;  // between neighbouring points (tc1 only)
+  // phi1 from the energy curves between neighbouring r, no plateau needed (tc1 only,
+  // analysis/energy_scaling.h): per pair the collapse, then each fixed fraction of E_0.
+  std::vector<Phi1Reading> energy;
 };
 
 // t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1) by the intersection rule and,

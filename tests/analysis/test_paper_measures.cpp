@@ -128,6 +128,16 @@ TEST(EffectiveExponent, SlopeClimbingAcrossACrossoverGivesAWindowEndingBeforeIt)
   PlateauOptions loose;
   loose.z = 30;
   EXPECT_GT(find_plateau(band, loose).window.t_hi, tc);
+  // For an asymptotic exponent that window is a transient: the slope leaves it and drifts on for
+  // most of a decade, so the fits' rule (asymptotic_plateau) says there is no plateau and why.
+  const Plateau late = find_plateau(band, asymptotic_plateau());
+  EXPECT_FALSE(late.found);
+  EXPECT_NE(late.note.find("transient"), std::string::npos) << late.note;
+  // A flat slope to the end still passes it.
+  const auto flat = ensemble_of(t, [](double s) { return std::pow(s, 2.0 / 3.0); }, 20, 13, 0.005);
+  const Plateau whole = find_plateau(local_slope_band(t, flat), asymptotic_plateau());
+  ASSERT_TRUE(whole.found) << whole.note;
+  EXPECT_NEAR(whole.exponent, 2.0 / 3.0, 0.01);
 }
 
 TEST(EffectiveExponent, SlopeThatDipsAndRecoversIsNoPlateauAcrossTheDip) {
@@ -455,6 +465,43 @@ TEST(EnsembleFits, AWindowWithoutAPlateauIsRefusedSayingWhereItPlateaus) {
                                 : e.note.find("no plateau within the run") != std::string::npos)
         << e.quantity << ": " << e.note;
   EXPECT_LT(f.speed_identity_error, 1e-12);  // v_rms^2 = 2E/N to round-off
+}
+
+}  // namespace
+}  // namespace gs
+
+namespace gs {
+namespace {
+
+TEST(CrossoverExponents, DeclaredPhi1IsTheCollapseOfThePairNearestTheLimit) {
+  auto reading = [](std::string from, std::string to, double level, double phi) {
+    Phi1Reading p;
+    p.from = std::move(from);
+    p.to = std::move(to);
+    p.level = level;
+    p.phi = phi;
+    p.ci_lo = phi - 0.1;
+    p.ci_hi = phi + 0.1;
+    return p;
+  };
+  const double nan = std::nan("");
+  std::vector<Phi1Reading> readings = {reading("r = 0.7", "r = 0.8", nan, 1.5),
+                                       reading("r = 0.7", "r = 0.8", 0.1, 1.6),
+                                       reading("r = 0.8", "r = 0.9", nan, 2.3),
+                                       reading("r = 0.8", "r = 0.9", 0.1, nan)};
+  const Comparison c = phi1_energy_comparison(2, readings, nan);
+  EXPECT_TRUE(c.counted);
+  EXPECT_DOUBLE_EQ(c.measured, 2.3);  // the last pair, not the first
+  EXPECT_NEAR(c.uncertainty, 0.1, 1e-12);
+  EXPECT_TRUE(c.agrees());  // 2.25 within the tolerance
+  // A level the last pair does not reach falls back to the nearest pair that does.
+  const Comparison l = phi1_energy_comparison(2, readings, 0.1);
+  EXPECT_FALSE(l.counted);
+  EXPECT_DOUBLE_EQ(l.measured, 1.6);
+  EXPECT_NE(l.note.find("r = 0.7"), std::string::npos);
+  // 3D's 3.0 is not 2.3: a wrong phi1 disagrees.
+  EXPECT_FALSE(phi1_energy_comparison(3, readings, nan).agrees());
+  EXPECT_FALSE(phi1_energy_comparison(2, {}, nan).measured_ok());
 }
 
 }  // namespace
