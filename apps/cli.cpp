@@ -44,11 +44,21 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
     if (opt == nullptr || key == "config")
       throw UserError("--config " + file + ": unknown key '" + key + "'");
     if (opt->count() > 0) continue;  // given on the command line
+    // Input files named in the file are found from the file's own folder (settings_toml writes
+    // them so), so that `--config DIR/movie.toml` works from any folder.
+    const bool files = is_input_files(*opt);
+    const std::filesystem::path from = std::filesystem::path(file).parent_path();
+    auto value = [&](const toml::node& n) {
+      std::string v = scalar(n, key);
+      if (files && !v.empty() && std::filesystem::path(v).is_relative())
+        v = (from / v).lexically_normal().string();
+      return v;
+    };
     if (auto* arr = node.as_array()) {
       if (arr->empty()) continue;  // the option's default: nothing
-      for (auto&& el : *arr) opt->add_result(scalar(el, key));
+      for (auto&& el : *arr) opt->add_result(value(el));
     } else {
-      opt->add_result(scalar(node, key));
+      opt->add_result(value(node));
     }
     try {
       opt->run_callback();
@@ -77,7 +87,17 @@ std::string toml_value(const std::string& text) {
 
 }  // namespace
 
-std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out) {
+CLI::Option* input_files(CLI::Option* opt) {
+  return opt->type_name(kInputFilesType);
+}
+
+bool is_input_files(const CLI::Option& opt) {
+  return opt.get_type_name() == kInputFilesType;
+}
+
+std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out,
+                          const std::filesystem::path& file_dir) {
+  namespace fs = std::filesystem;
   // What says where and how to run, not what the results are.
   static const std::set<std::string> kLeftOut = {
       "--help", "--version", "--config", "--out", "--force", "--quiet", "--checkpoint-every"};
@@ -96,6 +116,13 @@ std::string settings_toml(const CLI::App& sub, std::span<const std::string_view>
     std::vector<std::string> values = opt->results();
     if (values.empty() && !opt->get_default_str().empty()) values = {opt->get_default_str()};
     if (values.empty()) continue;  // unset and without a default: the command decides
+    if (is_input_files(*opt) && !file_dir.empty()) {
+      // Relative to the file's folder; a path given absolute stays so (it works from anywhere).
+      const fs::path base = fs::absolute(file_dir).lexically_normal();
+      for (std::string& v : values)
+        if (!v.empty() && fs::path(v).is_relative())
+          v = fs::absolute(v).lexically_normal().lexically_relative(base).string();
+    }
     const bool list = opt->get_items_expected_max() > 1 || values.size() > 1;
     out += key + " = " + (list ? "[" : "");
     for (std::size_t i = 0; i < values.size(); ++i)

@@ -46,8 +46,8 @@ std::string write_movie_toml(const std::filesystem::path& dir, const CLI::App& s
       "# grainshock movie: every setting that shapes the movie.\n"
       "# Again: grainshock movie --config movie.toml --out NEW; "
       "continue: grainshock resume DIR\n" +
-      settings_toml(sub,
-                    stored ? std::span(kSimulationFlags) : std::span<const std::string_view>());
+      settings_toml(sub, stored ? std::span(kSimulationFlags) : std::span<const std::string_view>(),
+                    dir);
   write_file_atomic(dir / "movie.toml", text);
   return text;
 }
@@ -63,8 +63,9 @@ struct MovieJob {
 
 // Every flag of `grainshock movie` into `job`.
 void add_movie_flags(CLI::App& sub, MovieJob& job) {
-  sub.add_option("snapshots", job.files,
-                 "Snapshot files to draw instead of simulating, in order of their Time");
+  input_files(sub.add_option("snapshots", job.files,
+                             "Snapshot files to draw instead of simulating, in order of their "
+                             "Time; movie.toml names them relative to itself"));
   add_config_option(sub);
   add_physics_options(sub, job.physics);
   add_output_options(sub, job.out, job.force, job.movie.quiet);
