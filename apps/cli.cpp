@@ -3,9 +3,11 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "sim/error.h"
@@ -68,21 +70,54 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
   }
 }
 
-// A TOML value: integers as they are, other numbers as format_double writes them (so that a
-// value read back from the file is written the same), anything else as a quoted string.
-std::string toml_value(const std::string& text) {
-  if (text == "true" || text == "false") return text;
-  char* end = nullptr;
-  const double x = std::strtod(text.c_str(), &end);
-  const bool number = !text.empty() && *end == '\0' && std::isfinite(x) &&
-                      text.find_first_of("xXpP") == std::string::npos;  // no hex floats
-  if (number) return text.find_first_of(".eE") == std::string::npos ? text : format_double(x);
-  std::string quoted = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') quoted += '\\';
-    quoted += ch;
+// How a setting's values are typed in TOML: by what the option converts to (CLI11's INT, UINT,
+// FLOAT, or anything else as text), not by how the text looks, so that a snapshot named 1e2
+// stays the string "1e2".
+enum class Kind { Integer, Float, Text };
+
+Kind kind_of(const CLI::Option& opt) {
+  const std::string full = opt.get_type_name();
+  const std::string type = full.substr(0, full.find(':'));  // validators append ":what"
+  if (type == "INT" || type == "UINT") return Kind::Integer;
+  if (type == "FLOAT") return Kind::Float;
+  return Kind::Text;
+}
+
+// One `key = value` line, formatted by toml++ with basic (escaped, one-line) strings. Floats
+// are the exception: the linked toml++ writes 17 significant digits (0.1 as
+// 0.10000000000000001), so they go in as format_double's shortest text that reads back to the
+// same double, which is valid TOML (inf and nan included).
+std::string toml_line(const std::string& key, Kind kind, const std::vector<std::string>& values,
+                      bool list) {
+  if (kind == Kind::Float) {
+    std::string text;
+    for (const std::string& v : values)
+      text += (text.empty() ? "" : ", ") + format_double(std::strtod(v.c_str(), nullptr));
+    // Our keys are flag names, bare TOML keys, so they need no quoting.
+    GS_CHECK(key.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") == std::string::npos);
+    return key + " = " + (list ? "[" + text + "]" : text) + "\n";
   }
-  return quoted + "\"";
+  toml::array items;
+  for (const std::string& v : values) {
+    errno = 0;
+    char* end = nullptr;
+    const long long x = kind == Kind::Integer ? std::strtoll(v.c_str(), &end, 10) : 0;
+    // An integer TOML cannot hold (a uint64 seed past 2^63) goes in as text, which the option
+    // converts back when --config reads it.
+    if (kind == Kind::Integer && errno == 0 && end != v.c_str() && *end == '\0')
+      items.push_back(static_cast<std::int64_t>(x));
+    else
+      items.push_back(v);
+  }
+  toml::table t;
+  if (list)
+    t.insert(key, std::move(items));
+  else
+    t.insert(key, std::move(*items.get(0)));
+  constexpr auto flags = toml::format_flags::allow_unicode_strings;
+  std::ostringstream out;
+  out << toml::toml_formatter(t, flags);
+  return out.str() + "\n";
 }
 
 }  // namespace
@@ -109,8 +144,11 @@ std::string settings_toml(const CLI::App& sub, std::span<const std::string_view>
       continue;
     const std::string key = opt->get_positional() ? name : name.substr(2);
     if (opt->get_expected_max() == 0) {  // a flag: every one of ours defaults to false
-      const bool on = opt->count() > 0 && opt->as<bool>();
-      out += key + " = " + (on ? "true" : "false") + "\n";
+      toml::table t;
+      t.insert(key, opt->count() > 0 && opt->as<bool>());
+      std::ostringstream line;
+      line << toml::toml_formatter(t);
+      out += line.str() + "\n";
       continue;
     }
     std::vector<std::string> values = opt->results();
@@ -124,10 +162,7 @@ std::string settings_toml(const CLI::App& sub, std::span<const std::string_view>
           v = fs::absolute(v).lexically_normal().lexically_relative(base).string();
     }
     const bool list = opt->get_items_expected_max() > 1 || values.size() > 1;
-    out += key + " = " + (list ? "[" : "");
-    for (std::size_t i = 0; i < values.size(); ++i)
-      out += (i > 0 ? ", " : "") + toml_value(values[i]);
-    out += list ? "]\n" : "\n";
+    out += toml_line(key, kind_of(*opt), values, list);
   }
   return out;
 }
