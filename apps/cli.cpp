@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -181,6 +182,18 @@ CLI::Validator whole_number() {
         return {};
       },
       "", "whole number");
+}
+
+CLI::Validator png_name() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string tail = text.size() >= 4 ? text.substr(text.size() - 4) : "";
+        std::transform(tail.begin(), tail.end(), tail.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (tail == ".png") return {};
+        return "'" + text + "' does not end in .png (only PNG is written)";
+      },
+      "FILE.png", "PNG name");
 }
 
 void add_config_option(CLI::App& sub) {

@@ -34,6 +34,10 @@ bool is_input_files(const CLI::Option& opt);
 // option's integer conversion then sees the digits (so its range checks still apply).
 CLI::Validator whole_number();
 
+// A picture file's name: it must end in .png (any case), since PNG is all that is written, so
+// that --out x.jpg is refused (exit 2, naming the file) instead of given PNG bytes.
+CLI::Validator png_name();
+
 // The physics flags shared by run, ensemble and movie.
 void add_physics_options(CLI::App& sub, PhysicsConfig& c);
 

@@ -120,8 +120,8 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
 
 void run(const FiguresOptions& o) {
   const FiguresMode mode = mode_of(o);
-  if (o.threads < 1) throw UserError("--threads must be at least 1");
-  if (o.sample < 1) throw UserError("--sample must be at least 1");
+  if (o.threads < 1) throw UsageError("--threads must be at least 1");
+  if (o.sample < 1) throw UsageError("--sample must be at least 1");
   const std::vector<std::string> formats = parse_plot_formats(o.format);
   const FiguresPlan plan = figures_plan(mode, o.seed, o.long_3d);
   const auto dir = prepare_output_dir(o.out, o.force);

@@ -154,10 +154,10 @@ void add_movie_command(CLI::App& app) {
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
-          throw UserError(std::string(name) +
-                          " sets up a simulation; a movie of stored snapshots takes none");
+          throw UsageError(std::string(name) +
+                           " sets up a simulation; a movie of stored snapshots takes none");
       if (sub->get_option("--checkpoint-every")->count() > 0)
-        throw UserError(
+        throw UsageError(
             "--checkpoint-every: a movie of stored snapshots keeps no checkpoint (it is made "
             "again from its files)");
       // Every file is opened and the first frame read (and checked) before the folder is made.
@@ -180,7 +180,7 @@ void add_movie_command(CLI::App& app) {
       return;
     }
     if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
-      throw UserError("--dt and --unwrap read stored snapshots; a simulated movie has none");
+      throw UsageError("--dt and --unwrap read stored snapshots; a simulated movie has none");
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);
