@@ -54,10 +54,10 @@ void implied_alpha(ExponentFit& e, int d, double half) {
 void check_window(const EnsembleSpec& spec, const Window& w) {
   const auto t = sample_times(spec);
   if (!(w.t_lo > 0 && w.t_hi > w.t_lo))
-    throw UserError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
+    throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
                     ": need 0 < T1 < T2");
   if (w.t_lo < t.front() || w.t_hi > t.back())
-    throw UserError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
+    throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
                     " lies outside the data [" + format_number(t.front()) + ", " +
                     format_number(t.back()) + "]");
 }

@@ -105,7 +105,7 @@ void check_fit_options(const EnsembleSpec& spec, const FitOptions& fit) {
   // Fewer resamples than 10 give no 95% interval at all; the cap keeps a typo from running for
   // days.
   if (fit.resamples < 10 || fit.resamples > 1000000)
-    throw UserError("--resamples must be in [10, 1000000], not " + std::to_string(fit.resamples));
+    throw UsageError("--resamples must be in [10, 1000000], not " + std::to_string(fit.resamples));
   if (fit.window) check_window(spec, *fit.window);
 }
 

@@ -177,7 +177,7 @@ std::vector<std::uint64_t> finished_realisations(const std::filesystem::path& di
 }
 
 RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
-  if (o.threads < 1) throw UserError("--threads must be at least 1");
+  if (o.threads < 1) throw UsageError("--threads must be at least 1");
   Ranks& ranks = o.ranks ? *o.ranks : Ranks::single();
   GS_CHECK(ranks.rank() == 0);
   const auto& dir = o.realisations_dir;

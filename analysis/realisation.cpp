@@ -109,18 +109,18 @@ double theory_alpha(const PhysicsConfig& c) {
 EnsembleSpec checked(EnsembleSpec spec) {
   validate(spec.physics);
   if (spec.physics.initial != Initial::Kick)
-    throw UserError("--initial: ensembles average kicked gases only (use run for thermal starts)");
-  if (spec.physics.dim < 2) throw UserError("--dim: ensembles measure bands in 2 or 3 dimensions");
-  if (spec.realisations < 1) throw UserError("--realisations must be at least 1");
+    throw UsageError("--initial: ensembles average kicked gases only (use run for thermal starts)");
+  if (spec.physics.dim < 2) throw UsageError("--dim: ensembles measure bands in 2 or 3 dimensions");
+  if (spec.realisations < 1) throw UsageError("--realisations must be at least 1");
   if (spec.per_decade < 1 || spec.per_decade > 1000)
-    throw UserError("--per-decade must be in [1, 1000]");
-  if (spec.bins < 2 || spec.bins > 100000) throw UserError("--bins must be in [2, 100000]");
+    throw UsageError("--per-decade must be in [1, 1000]");
+  if (spec.bins < 2 || spec.bins > 100000) throw UsageError("--bins must be in [2, 100000]");
   const double T = spec.physics.t_max;
   if (spec.snapshot_times.empty()) spec.snapshot_times = {T / 4, T / 2, T};
   std::sort(spec.snapshot_times.begin(), spec.snapshot_times.end());
   for (double t : spec.snapshot_times)
     if (!(t > 0 && t <= T))
-      throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
+      throw UsageError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
   spec.snapshot_times = merge_times(spec.snapshot_times, {});
   return spec;
 }

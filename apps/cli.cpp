@@ -3,9 +3,12 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "sim/error.h"
@@ -44,11 +47,21 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
     if (opt == nullptr || key == "config")
       throw UserError("--config " + file + ": unknown key '" + key + "'");
     if (opt->count() > 0) continue;  // given on the command line
+    // Input files named in the file are found from the file's own folder (settings_toml writes
+    // them so), so that `--config DIR/movie.toml` works from any folder.
+    const bool files = is_input_files(*opt);
+    const std::filesystem::path from = std::filesystem::path(file).parent_path();
+    auto value = [&](const toml::node& n) {
+      std::string v = scalar(n, key);
+      if (files && !v.empty() && std::filesystem::path(v).is_relative())
+        v = (from / v).lexically_normal().string();
+      return v;
+    };
     if (auto* arr = node.as_array()) {
       if (arr->empty()) continue;  // the option's default: nothing
-      for (auto&& el : *arr) opt->add_result(scalar(el, key));
+      for (auto&& el : *arr) opt->add_result(value(el));
     } else {
-      opt->add_result(scalar(node, key));
+      opt->add_result(value(node));
     }
     try {
       opt->run_callback();
@@ -58,26 +71,69 @@ void apply_config_file(CLI::App& sub, const std::string& file) {
   }
 }
 
-// A TOML value: integers as they are, other numbers as format_double writes them (so that a
-// value read back from the file is written the same), anything else as a quoted string.
-std::string toml_value(const std::string& text) {
-  if (text == "true" || text == "false") return text;
-  char* end = nullptr;
-  const double x = std::strtod(text.c_str(), &end);
-  const bool number = !text.empty() && *end == '\0' && std::isfinite(x) &&
-                      text.find_first_of("xXpP") == std::string::npos;  // no hex floats
-  if (number) return text.find_first_of(".eE") == std::string::npos ? text : format_double(x);
-  std::string quoted = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') quoted += '\\';
-    quoted += ch;
+// How a setting's values are typed in TOML: by what the option converts to (CLI11's INT, UINT,
+// FLOAT, or anything else as text), not by how the text looks, so that a snapshot named 1e2
+// stays the string "1e2".
+enum class Kind { Integer, Float, Text };
+
+Kind kind_of(const CLI::Option& opt) {
+  const std::string full = opt.get_type_name();
+  const std::string type = full.substr(0, full.find(':'));  // validators append ":what"
+  if (type == "INT" || type == "UINT") return Kind::Integer;
+  if (type == "FLOAT") return Kind::Float;
+  return Kind::Text;
+}
+
+// One `key = value` line, formatted by toml++ with basic (escaped, one-line) strings. Floats
+// are the exception: the linked toml++ writes 17 significant digits (0.1 as
+// 0.10000000000000001), so they go in as format_double's shortest text that reads back to the
+// same double, which is valid TOML (inf and nan included).
+std::string toml_line(const std::string& key, Kind kind, const std::vector<std::string>& values,
+                      bool list) {
+  if (kind == Kind::Float) {
+    std::string text;
+    for (const std::string& v : values)
+      text += (text.empty() ? "" : ", ") + format_double(std::strtod(v.c_str(), nullptr));
+    // Our keys are flag names, bare TOML keys, so they need no quoting.
+    GS_CHECK(key.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") == std::string::npos);
+    return key + " = " + (list ? "[" + text + "]" : text) + "\n";
   }
-  return quoted + "\"";
+  toml::array items;
+  for (const std::string& v : values) {
+    errno = 0;
+    char* end = nullptr;
+    const long long x = kind == Kind::Integer ? std::strtoll(v.c_str(), &end, 10) : 0;
+    // An integer TOML cannot hold (a uint64 seed past 2^63) goes in as text, which the option
+    // converts back when --config reads it.
+    if (kind == Kind::Integer && errno == 0 && end != v.c_str() && *end == '\0')
+      items.push_back(static_cast<std::int64_t>(x));
+    else
+      items.push_back(v);
+  }
+  toml::table t;
+  if (list)
+    t.insert(key, std::move(items));
+  else
+    t.insert(key, std::move(*items.get(0)));
+  constexpr auto flags = toml::format_flags::allow_unicode_strings;
+  std::ostringstream out;
+  out << toml::toml_formatter(t, flags);
+  return out.str() + "\n";
 }
 
 }  // namespace
 
-std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out) {
+CLI::Option* input_files(CLI::Option* opt) {
+  return opt->type_name(kInputFilesType);
+}
+
+bool is_input_files(const CLI::Option& opt) {
+  return opt.get_type_name() == kInputFilesType;
+}
+
+std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out,
+                          const std::filesystem::path& file_dir) {
+  namespace fs = std::filesystem;
   // What says where and how to run, not what the results are.
   static const std::set<std::string> kLeftOut = {
       "--help", "--version", "--config", "--out", "--force", "--quiet", "--checkpoint-every"};
@@ -89,18 +145,25 @@ std::string settings_toml(const CLI::App& sub, std::span<const std::string_view>
       continue;
     const std::string key = opt->get_positional() ? name : name.substr(2);
     if (opt->get_expected_max() == 0) {  // a flag: every one of ours defaults to false
-      const bool on = opt->count() > 0 && opt->as<bool>();
-      out += key + " = " + (on ? "true" : "false") + "\n";
+      toml::table t;
+      t.insert(key, opt->count() > 0 && opt->as<bool>());
+      std::ostringstream line;
+      line << toml::toml_formatter(t);
+      out += line.str() + "\n";
       continue;
     }
     std::vector<std::string> values = opt->results();
     if (values.empty() && !opt->get_default_str().empty()) values = {opt->get_default_str()};
     if (values.empty()) continue;  // unset and without a default: the command decides
+    if (is_input_files(*opt) && !file_dir.empty()) {
+      // Relative to the file's folder; a path given absolute stays so (it works from anywhere).
+      const fs::path base = fs::absolute(file_dir).lexically_normal();
+      for (std::string& v : values)
+        if (!v.empty() && fs::path(v).is_relative())
+          v = fs::absolute(v).lexically_normal().lexically_relative(base).string();
+    }
     const bool list = opt->get_items_expected_max() > 1 || values.size() > 1;
-    out += key + " = " + (list ? "[" : "");
-    for (std::size_t i = 0; i < values.size(); ++i)
-      out += (i > 0 ? ", " : "") + toml_value(values[i]);
-    out += list ? "]\n" : "\n";
+    out += toml_line(key, kind_of(*opt), values, list);
   }
   return out;
 }
@@ -119,6 +182,18 @@ CLI::Validator whole_number() {
         return {};
       },
       "", "whole number");
+}
+
+CLI::Validator png_name() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string tail = text.size() >= 4 ? text.substr(text.size() - 4) : "";
+        std::transform(tail.begin(), tail.end(), tail.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (tail == ".png") return {};
+        return "'" + text + "' does not end in .png (only PNG is written)";
+      },
+      "FILE.png", "PNG name");
 }
 
 void add_config_option(CLI::App& sub) {

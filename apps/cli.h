@@ -18,12 +18,25 @@ void add_config_option(CLI::App& sub);
 // flag name, or a positional argument's name) that --config reads back: the run file of a
 // command whose settings are all flags. Help, version, --config and the output-folder flags
 // (--out, --force, --quiet) are left out, since they do not shape the results, and so are the
-// options named in `left_out`.
-std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out = {});
+// options named in `left_out`. Input files (input_files) given as relative paths are written
+// relative to `file_dir`, the folder of the file the text goes into, which --config reads them
+// from, so the file works from any folder; absolute paths stay as given.
+std::string settings_toml(const CLI::App& sub, std::span<const std::string_view> left_out = {},
+                          const std::filesystem::path& file_dir = {});
+
+// Marks `opt` as naming input files (its type in --help reads FILE): in a --config file its
+// relative paths are taken from the file's folder. Returns `opt`.
+inline constexpr const char* kInputFilesType = "FILE";
+CLI::Option* input_files(CLI::Option* opt);
+bool is_input_files(const CLI::Option& opt);
 
 // Lets a count be written as physicists write it, 2e6 or 1e12, when it is a whole number: the
 // option's integer conversion then sees the digits (so its range checks still apply).
 CLI::Validator whole_number();
+
+// A picture file's name: it must end in .png (any case), since PNG is all that is written, so
+// that --out x.jpg is refused (exit 2, naming the file) instead of given PNG bytes.
+CLI::Validator png_name();
 
 // The physics flags shared by run, ensemble and movie.
 void add_physics_options(CLI::App& sub, PhysicsConfig& c);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/exit_code.h"
 #include "io/atomic_file.h"
@@ -200,7 +201,8 @@ void add_compare_command(CLI::App& app) {
       ->check(CLI::Range(0L, 1L << 40))
       ->capture_default_str();
   sub->add_option("--diff", o->diff,
-                  "Write a PNG with the differing pixels in red (a movie's worst frame)");
+                  "Write a PNG (NAME.png) with the differing pixels in red (a movie's worst frame)")
+      ->check(png_name());
   sub->add_flag("--update", o->update,
                 "Copy ACTUAL to EXPECTED when EXPECTED is missing or not alike; exit 0");
   sub->footer(

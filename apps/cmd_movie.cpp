@@ -46,8 +46,8 @@ std::string write_movie_toml(const std::filesystem::path& dir, const CLI::App& s
       "# grainshock movie: every setting that shapes the movie.\n"
       "# Again: grainshock movie --config movie.toml --out NEW; "
       "continue: grainshock resume DIR\n" +
-      settings_toml(sub,
-                    stored ? std::span(kSimulationFlags) : std::span<const std::string_view>());
+      settings_toml(sub, stored ? std::span(kSimulationFlags) : std::span<const std::string_view>(),
+                    dir);
   write_file_atomic(dir / "movie.toml", text);
   return text;
 }
@@ -63,8 +63,9 @@ struct MovieJob {
 
 // Every flag of `grainshock movie` into `job`.
 void add_movie_flags(CLI::App& sub, MovieJob& job) {
-  sub.add_option("snapshots", job.files,
-                 "Snapshot files to draw instead of simulating, in order of their Time");
+  input_files(sub.add_option("snapshots", job.files,
+                             "Snapshot files to draw instead of simulating, in order of their "
+                             "Time; movie.toml names them relative to itself"));
   add_config_option(sub);
   add_physics_options(sub, job.physics);
   add_output_options(sub, job.out, job.force, job.movie.quiet);
@@ -153,10 +154,10 @@ void add_movie_command(CLI::App& app) {
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
-          throw UserError(std::string(name) +
-                          " sets up a simulation; a movie of stored snapshots takes none");
+          throw UsageError(std::string(name) +
+                           " sets up a simulation; a movie of stored snapshots takes none");
       if (sub->get_option("--checkpoint-every")->count() > 0)
-        throw UserError(
+        throw UsageError(
             "--checkpoint-every: a movie of stored snapshots keeps no checkpoint (it is made "
             "again from its files)");
       // Every file is opened and the first frame read (and checked) before the folder is made.
@@ -179,7 +180,7 @@ void add_movie_command(CLI::App& app) {
       return;
     }
     if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
-      throw UserError("--dt and --unwrap read stored snapshots; a simulated movie has none");
+      throw UsageError("--dt and --unwrap read stored snapshots; a simulated movie has none");
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);

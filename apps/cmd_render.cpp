@@ -28,7 +28,7 @@ void add_render_command(CLI::App& app) {
     bool no_colorbar = false, no_time = false, no_legend = false;
     bool inset = false, no_inset = false;
     int compression = 1;
-    std::size_t frame = 0;
+    long long frame = 0;
     ReadOptions read;
   };
   auto opt = std::make_shared<Options>();
@@ -38,7 +38,9 @@ void add_render_command(CLI::App& app) {
                   "Snapshot file(s): extended XYZ, LAMMPS dump or GSD; several make one picture, "
                   "one colour per time")
       ->required();
-  sub->add_option("--frame", opt->frame, "Frame of a multi-frame file, counted from 0")
+  sub->add_option("--frame", opt->frame,
+                  "Frame of a multi-frame file, counted from 0; negative from the end (-1: the "
+                  "last), as ASE counts")
       ->capture_default_str();
   sub->add_option("--dim", opt->read.dim, "Dimension of the files, if not the one they state")
       ->check(CLI::Range(1, 3));
@@ -49,7 +51,9 @@ void add_render_command(CLI::App& app) {
   sub->add_flag("--unwrap", opt->read.unwrap,
                 "LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
                 "flags) instead of the positions in the cell, which OVITO draws by default");
-  sub->add_option("--out", opt->out, "PNG file to write")->required();
+  sub->add_option("--out", opt->out, "PNG file to write (NAME.png)")
+      ->required()
+      ->check(png_name());
   sub->add_option("--width", opt->view.width, "Picture width in pixels")->capture_default_str();
   sub->add_option("--height", opt->view.height, "Picture height in pixels")->capture_default_str();
   std::string maps;
@@ -138,15 +142,15 @@ void add_render_command(CLI::App& app) {
     else if (o.framing == "box")
       o.view.framing = render::Framing::Box;
     else
-      throw UserError("unknown --framing '" + o.framing + "' (use fit or box)");
+      throw UsageError("unknown --framing '" + o.framing + "' (use fit or box)");
     if (!o.centre.empty())
       o.view.centre =
           Eigen::Vector3d(o.centre[0], o.centre[1], o.centre.size() > 2 ? o.centre[2] : 0);
-    if (!(o.view.zoom > 0)) throw UserError("--zoom must be positive");
-    if (!(o.view.fov > 0 && o.view.fov < 180)) throw UserError("--fov must be between 0 and 180");
+    if (!(o.view.zoom > 0)) throw UsageError("--zoom must be positive");
+    if (!(o.view.fov > 0 && o.view.fov < 180)) throw UsageError("--fov must be between 0 and 180");
     if (o.view.slab < 0 || o.view.distance < 0)
-      throw UserError("--slab and --distance must be >= 0");
-    if (o.inset && o.no_inset) throw UserError("--inset and --no-inset exclude each other");
+      throw UsageError("--slab and --distance must be >= 0");
+    if (o.inset && o.no_inset) throw UsageError("--inset and --no-inset exclude each other");
     // Everything the user typed is checked before any file is read or GL context made.
     render::check_size(o.view.width, o.view.height, 16384);
     render::check_style(st);

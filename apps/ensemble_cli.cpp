@@ -12,6 +12,7 @@ namespace gs::app {
 void add_fit_options(CLI::App& sub, int& resamples, std::vector<double>& window) {
   sub.add_option("--resamples", resamples,
                  "Bootstrap resamples of the exponent intervals, in [10, 1000000]")
+      ->check(CLI::Range(10, 1000000))  // before any folder is read, as every range (exit 2)
       ->capture_default_str();
   sub.add_option("--window", window,
                  "Scaling window T1,T2 (simulation time) for the exponent fits; default: automatic")

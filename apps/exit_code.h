@@ -10,7 +10,8 @@ namespace gs::app {
 enum ExitCode : int {
   kExitSuccess = 0,
   kExitUserError = 1,      // UserError: a file, a folder or physics that cannot work
-  kExitUsageError = 2,     // the command line itself: unknown word, missing or malformed value
+  kExitUsageError = 2,     // the command line itself: unknown word, missing or malformed value,
+                           // a value outside its flag's range (CLI11's or gs::UsageError)
   kExitInterrupted = 130,  // SIGINT or SIGTERM; what was written is complete and readable
 };
 
@@ -38,7 +39,8 @@ inline constexpr const char* kExitCodeHelp =
     "Exit codes:\n"
     "  0    success (compare: the pictures are alike)\n"
     "  1    user error: a file, folder or setting that cannot work (compare: not alike)\n"
-    "  2    usage error: unknown subcommand or flag, missing or malformed value\n"
+    "  2    usage error: unknown subcommand or flag, missing or malformed value,\n"
+    "       a value outside the flag's range, flags that exclude each other\n"
     "       (compare: missing file, different sizes, not a PNG or movie)\n"
     "  130  interrupted by SIGINT or SIGTERM; the files written so far are complete";
 

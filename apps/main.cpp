@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
     return e.code;
   } catch (const CodedError& e) {
     return fail(e.code(), e.what());
+  } catch (const gs::UsageError& e) {
+    return fail(kExitUsageError, e.what());
   } catch (const gs::UserError& e) {
     return fail(kExitUserError, e.what());
   } catch (const std::bad_alloc&) {

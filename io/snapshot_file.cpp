@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "io/gsd.h"
+#include "io/gunzip.h"
 #include "io/lammps_dump.h"
 #include "io/text_scan.h"
 #include "io/xyz.h"
@@ -14,9 +15,9 @@ namespace gs {
 
 SnapshotFile::SnapshotFile(std::unique_ptr<FrameSource> source, std::string path, ReadOptions o)
     : source_(std::move(source)), path_(std::move(path)), options_(o) {
-  if (options_.dim < 0 || options_.dim > 3) throw UserError("--dim must be 1, 2 or 3");
+  if (options_.dim < 0 || options_.dim > 3) throw UsageError("--dim must be 1, 2 or 3");
   if (!(options_.dt >= 0) || !std::isfinite(options_.dt))
-    throw UserError("--dt must be a positive time step");
+    throw UsageError("--dt must be a positive time step");
 }
 
 Snapshot SnapshotFile::read(std::size_t k) const {
@@ -28,6 +29,17 @@ Snapshot SnapshotFile::read(std::size_t k) const {
   Snapshot s = source_->read(k, options_);
   finish_snapshot(s, options_, "snapshot '" + path_ + "' frame " + std::to_string(k));
   return s;
+}
+
+std::size_t SnapshotFile::frame_index(long long k) const {
+  const auto n = static_cast<long long>(source_->frames());
+  const long long at = k < 0 ? n + k : k;
+  if (at < 0 || at >= n)
+    throw UserError("--frame " + std::to_string(k) + ": snapshot '" + path_ + "' has " +
+                     std::to_string(n) + (n == 1 ? " frame" : " frames") + " (0 to " +
+                     std::to_string(n - 1) + ", or -" + std::to_string(n) +
+                     " to -1 from the end)");
+  return static_cast<std::size_t>(at);
 }
 
 void finish_snapshot(Snapshot& s, const ReadOptions& options, const std::string& where) {
@@ -110,11 +122,15 @@ SnapshotFile open_snapshots(MappedFile file, const ReadOptions& options) {
 }
 
 SnapshotFile open_snapshots(const std::string& path, const ReadOptions& options) {
-  return open_snapshots(MappedFile::open(path), options);
+  MappedFile file = MappedFile::open(path);
+  if (is_gzip(file.bytes()))
+    file = MappedFile::from_bytes(path, gunzip(file.bytes(), path, gunzip_limit()));
+  return open_snapshots(std::move(file), options);
 }
 
-Snapshot read_snapshot(const std::string& path, const ReadOptions& options, std::size_t frame) {
-  return open_snapshots(path, options).read(frame);
+Snapshot read_snapshot(const std::string& path, const ReadOptions& options, long long frame) {
+  const SnapshotFile f = open_snapshots(path, options);
+  return f.read(f.frame_index(frame));
 }
 
 }  // namespace gs

@@ -1,6 +1,7 @@
 #pragma once
 // One reader for every snapshot file render, movie and the analysis take: extended XYZ (ours,
-// ASE's, OVITO's), LAMMPS text dumps and HOOMD GSD, told apart by their content, not their name.
+// ASE's, OVITO's), LAMMPS text dumps and HOOMD GSD, told apart by their content, not their name,
+// each also gzip-compressed (io/gunzip.h).
 // Opening indexes the frames in one scan; read(k) parses frame k alone, so a movie streams a
 // long trajectory one frame at a time.
 //
@@ -49,6 +50,9 @@ class SnapshotFile {
   std::size_t frame_count() const { return source_->frames(); }
   // Frame k (0 = first); UserError naming the file and the number of frames if k is too large.
   Snapshot read(std::size_t k) const;
+  // The frame a --frame K names, counted as ASE counts: from 0, or from the end when negative
+  // (-1 the last); UserError naming the flag, the file and its frames if there is none.
+  std::size_t frame_index(long long k) const;
   const std::string& path() const { return path_; }
   const char* format() const { return source_->format(); }
 
@@ -61,9 +65,10 @@ class SnapshotFile {
 SnapshotFile open_snapshots(const std::string& path, const ReadOptions& options = {});
 // The same over bytes in memory (tests and fuzzers); `name` stands for the path in messages.
 SnapshotFile open_snapshots(MappedFile file, const ReadOptions& options = {});
-// Frame `frame` of a file: the shorthand for pictures of one snapshot.
+// Frame `frame` of a file (negative: from the end, as frame_index): the shorthand for pictures
+// of one snapshot.
 Snapshot read_snapshot(const std::string& path, const ReadOptions& options = {},
-                       std::size_t frame = 0);
+                       long long frame = 0);
 
 // What every reader does last: applies the dimension (stated, overridden or inferred), zeroes
 // what lies beyond it, fills the defaults and checks the sizes. Exposed for the tests.

@@ -10,7 +10,7 @@ SnapshotFormat parse_snapshot_format(const std::string& name) {
   if (name == "xyz") return SnapshotFormat::Xyz;
   if (name == "ovito-xyz") return SnapshotFormat::OvitoXyz;
   if (name == "gsd") return SnapshotFormat::Gsd;
-  throw UserError("unknown --snapshot-format '" + name + "' (use xyz, ovito-xyz or gsd)");
+  throw UsageError("unknown --snapshot-format '" + name + "' (use xyz, ovito-xyz or gsd)");
 }
 
 const char* to_string(SnapshotFormat f) {
@@ -27,7 +27,7 @@ const char* to_string(SnapshotFormat f) {
 
 void parse_snapshot_particles(const std::string& name, SnapshotWriteOptions& options) {
   if (name != "all" && name != "active")
-    throw UserError("unknown --snapshot-particles '" + name + "' (use all or active)");
+    throw UsageError("unknown --snapshot-particles '" + name + "' (use all or active)");
   options.active_only = name == "active";
 }
 

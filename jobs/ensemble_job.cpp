@@ -87,7 +87,7 @@ FitOptions fit_options(int resamples, const std::vector<double>& window, const E
   FitOptions fit;
   fit.resamples = resamples;
   if (!window.empty()) {
-    if (window.size() != 2) throw UserError("--window needs two times T1,T2");
+    if (window.size() != 2) throw UsageError("--window needs two times T1,T2");
     fit.window = Window{window[0], window[1]};
   }
   check_fit_options(spec, fit);
@@ -98,8 +98,8 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   Ranks& ranks = Ranks::world();
   if (ranks.rank() != 0) return served(ranks);
   // Every check before the output folder is touched: bad input leaves nothing behind.
-  if (o.realisations < 1) throw UserError("--realisations must be at least 1");
-  if (o.threads < 1) throw UserError("--threads must be at least 1");
+  if (o.realisations < 1) throw UsageError("--realisations must be at least 1");
+  if (o.threads < 1) throw UsageError("--threads must be at least 1");
   EnsembleJob job;
   job.spec.physics = o.physics;
   job.spec.realisations = static_cast<std::uint64_t>(o.realisations);
@@ -145,7 +145,7 @@ EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
                                const ProgressFactory& progress) {
   Ranks& ranks = Ranks::world();
   if (ranks.rank() != 0) return served(ranks);
-  if (threads < 1) throw UserError("--threads must be at least 1");
+  if (threads < 1) throw UsageError("--threads must be at least 1");
   std::error_code ec;
   if (!fs::is_regular_file(dir / "ensemble.toml", ec))
     throw UserError(dir.string() + ": not an ensemble folder (no ensemble.toml)");

@@ -92,8 +92,8 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
 }  // namespace
 
 FiguresResult run_figures_job(const FiguresOptions& o) {
-  if (o.threads < 1) throw UserError("--threads must be at least 1");
-  if (o.sample < 1) throw UserError("--sample must be at least 1");
+  if (o.threads < 1) throw UsageError("--threads must be at least 1");
+  if (o.sample < 1) throw UsageError("--sample must be at least 1");
   const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d);
   FiguresResult out;
   out.dir = prepare_output_dir(o.out, o.force);

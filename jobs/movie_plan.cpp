@@ -23,7 +23,7 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
   style.scale = render::parse_scale(o.scale, style.field);
   if (!o.range.empty()) style.range = std::pair{o.range[0], o.range[1]};
   if (!o.range.empty() && o.range_per_frame)
-    throw UserError("--range and --range-per-frame exclude each other");
+    throw UsageError("--range and --range-per-frame exclude each other");
   style.range_per_frame = o.range_per_frame;
   style.inset = o.inset;
   style.show_inactive = o.show_inactive;
@@ -35,12 +35,12 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
   view.clip = o.clip;
   view.azimuth = o.azimuth;
   view.elevation = o.elevation;
-  if (!std::isfinite(o.orbit)) throw UserError("--orbit must be a finite number of degrees");
+  if (!std::isfinite(o.orbit)) throw UsageError("--orbit must be a finite number of degrees");
   const bool follow = p.follow = o.camera == "follow";
   if (!follow && o.camera != "fixed")
-    throw UserError("unknown --camera '" + o.camera + "' (use follow or fixed)");
+    throw UsageError("unknown --camera '" + o.camera + "' (use follow or fixed)");
   view.framing = follow ? render::Framing::Fit : render::Framing::Box;
-  if (o.slab < 0) throw UserError("--slab must be >= 0");
+  if (o.slab < 0) throw UsageError("--slab must be >= 0");
   p.backend = render::parse_backend(o.backend);
   render::check_movie_options(o.movie);
   return p;
@@ -62,7 +62,7 @@ MoviePlan make_live_plan(const PhysicsConfig& physics, const FrontMovieOptions& 
 
 void check_orbit(int dim, const FrontMovieOptions& o, const std::string& what) {
   if (o.orbit != 0 && dim != 3)
-    throw UserError("--orbit turns the camera about a 3D scene; " + what + " is " +
+    throw UsageError("--orbit turns the camera about a 3D scene; " + what + " is " +
                     std::to_string(dim) + "D");
 }
 
@@ -74,27 +74,27 @@ void settle_range(MoviePlan& p, int dim) {
 std::vector<double> frame_times(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   const int n = o.frames;
   const double t_max = physics.t_max;
-  if (n < 1) throw UserError("--frames must be at least 1 (got " + std::to_string(n) + ")");
+  if (n < 1) throw UsageError("--frames must be at least 1 (got " + std::to_string(n) + ")");
   // Bounded before anything is allocated: a million frames is a nine-hour movie at 30 fps.
   if (n > 1000000)
-    throw UserError("--frames " + std::to_string(n) + ": too many frames (at most 1000000)");
+    throw UsageError("--frames " + std::to_string(n) + ": too many frames (at most 1000000)");
   std::vector<double> t(n);
   if (o.spacing == "lin") {
     for (int k = 0; k < n; ++k) t[k] = t_max * (k + 1) / n;
   } else if (o.spacing == "log") {
     if (!(o.t_start > 0 && o.t_start < t_max))
-      throw UserError("--t-start " + format_number(o.t_start) + " must be in (0, --t-max " +
+      throw UsageError("--t-start " + format_number(o.t_start) + " must be in (0, --t-max " +
                       format_number(t_max) + ") for --frame-spacing log");
     for (int k = 0; k < n; ++k)
       t[k] = n == 1 ? t_max : o.t_start * std::pow(t_max / o.t_start, double(k) / (n - 1));
     t.back() = t_max;
   } else {
-    throw UserError("unknown --frame-spacing '" + o.spacing + "' (use lin or log)");
+    throw UsageError("unknown --frame-spacing '" + o.spacing + "' (use lin or log)");
   }
   // Frames closer than the clock can tell apart would repeat the same picture.
   for (int k = 1; k < n; ++k)
     if (!(t[k] - t[k - 1] > 1e-9 * t[k]))
-      throw UserError("--frames " + std::to_string(n) + ": more frames than the run can give (" +
+      throw UsageError("--frames " + std::to_string(n) + ": more frames than the run can give (" +
                       format_number(t[k - 1]) + " and " + format_number(t[k]) +
                       " are not distinct times); use fewer frames or a longer --t-max");
   return t;

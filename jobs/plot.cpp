@@ -22,10 +22,10 @@ std::vector<std::string> parse_plot_formats(const std::string& list) {
   std::istringstream in(list);
   for (std::string f; std::getline(in, f, ',');) {
     if (f != "png" && f != "svg" && f != "pdf")
-      throw UserError("--format: unknown figure format '" + f + "' (png, svg, pdf)");
+      throw UsageError("--format: unknown figure format '" + f + "' (png, svg, pdf)");
     if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
   }
-  if (out.empty()) throw UserError("--format: no figure format given (png, svg, pdf)");
+  if (out.empty()) throw UsageError("--format: no figure format given (png, svg, pdf)");
   return out;
 }
 

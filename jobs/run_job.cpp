@@ -325,7 +325,8 @@ RunResult run_job(const RunOptions& o, bool resume) {
     std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
                  stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
                  static_cast<long long>(sim.stats().collisions), loop->timing().run, dir.c_str(),
-                 stopped ? " (continue with: grainshock resume DIR)" : "");
+                 stopped ? (" (continue with: grainshock resume " + dir.string() + ")").c_str()
+                         : "");
   return {.stopped = stopped};
 }
 

@@ -39,19 +39,19 @@ void check_plan(const RunPlan& plan, int snapshot_copies) {
   const PhysicsConfig& c = plan.physics;
   validate(c);
   if (plan.snapshots.format == SnapshotFormat::Gsd && c.dim == 1)
-    throw UserError("--snapshot-format gsd holds 2D and 3D systems only; use xyz in 1D");
+    throw UsageError("--snapshot-format gsd holds 2D and 3D systems only; use xyz in 1D");
   for (double t : plan.snapshot_times)
     if (!(t > 0 && t <= c.t_max))
-      throw UserError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
+      throw UsageError("--snapshot-times: " + format_number(t) + " is outside (0, t-max]");
   if (plan.per_decade < 1 || plan.per_decade > 1000)
-    throw UserError("--per-decade " + std::to_string(plan.per_decade) + ": must be in [1, 1000]");
+    throw UsageError("--per-decade " + std::to_string(plan.per_decade) + ": must be in [1, 1000]");
   if (plan.sample_every != 0) {
     if (!(plan.sample_every > 0) || !std::isfinite(plan.sample_every))
-      throw UserError("--sample-every " + format_number(plan.sample_every) + ": must be positive");
+      throw UsageError("--sample-every " + format_number(plan.sample_every) + ": must be positive");
     // Counted before the grid is made: 1e-7 to t-max 1e5 would be 1e12 rows.
     const double rows = c.t_max / plan.sample_every;
     if (rows > kMaxSampleRows)
-      throw UserError("--sample-every " + format_number(plan.sample_every) + ": " +
+      throw UsageError("--sample-every " + format_number(plan.sample_every) + ": " +
                       format_number(rows) + " rows to t-max " + format_number(c.t_max) +
                       ", more than " + format_number(kMaxSampleRows) + "; use --sample-every " +
                       format_number(c.t_max / kMaxSampleRows) + " or more");

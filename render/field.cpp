@@ -109,7 +109,7 @@ Field choose_field(const std::string& name, const Snapshot& s, const std::string
           "snapshot '" + file + "' has no " +
           (needs_velocity(f) ? "velocities (no velo property)" : "first_collision property") +
           "; cannot colour by " + name + " (it has: " + list + ")");
-  throw UserError("unknown --color-by '" + name + "'; snapshot '" + file + "' can be coloured by " +
+  throw UsageError("unknown --color-by '" + name + "'; snapshot '" + file + "' can be coloured by " +
                   list);
 }
 

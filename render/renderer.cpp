@@ -371,7 +371,7 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
 
 void check_size(int width, int height, int limit) {
   if (width <= 0 || height <= 0 || width > limit || height > limit)
-    throw UserError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+    throw UsageError("image size " + std::to_string(width) + "x" + std::to_string(height) +
                     " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
 }
 

@@ -72,7 +72,7 @@ bool is_scaled(Field f) {
 Scale parse_scale(const std::string& name, Field f) {
   if (name == "lin") return Scale::Linear;
   if (name == "log") return Scale::Log;
-  if (name != "auto") throw UserError("unknown --scale '" + name + "' (use auto, lin or log)");
+  if (name != "auto") throw UsageError("unknown --scale '" + name + "' (use auto, lin or log)");
   return f == Field::Speed || f == Field::FirstCollision ? Scale::Log : Scale::Linear;
 }
 

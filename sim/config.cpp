@@ -49,42 +49,45 @@ static std::string rounded(double x) {
 }
 
 void validate(const PhysicsConfig& c) {
+  // A value outside its flag's range is a usage error; settings that cannot work together
+  // (further down) are user errors.
+  auto bad = [](const std::string& m) { throw UsageError(m); };
   auto fail = [](const std::string& m) { throw UserError(m); };
-  if (c.dim < 1 || c.dim > 3) fail("--dim " + std::to_string(c.dim) + ": must be 1, 2 or 3");
+  if (c.dim < 1 || c.dim > 3) bad("--dim " + std::to_string(c.dim) + ": must be 1, 2 or 3");
   if (c.particles < 2)
-    fail("--particles " + std::to_string(c.particles) + ": need at least 2 particles");
+    bad("--particles " + std::to_string(c.particles) + ": need at least 2 particles");
   // Particle indices are 32-bit in the engine.
   if (c.particles >= INT32_MAX)
-    fail("--particles " + std::to_string(c.particles) + ": at most " +
+    bad("--particles " + std::to_string(c.particles) + ": at most " +
          std::to_string(INT32_MAX - 1) + " (and this many would need about " +
          rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
   // Run files are TOML, whose integers are signed 64-bit: a larger seed could not be read back.
   if (c.seed > static_cast<std::uint64_t>(INT64_MAX))
-    fail("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
+    bad("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
          "]");
   if (c.realisation > static_cast<std::uint64_t>(INT64_MAX))
-    fail("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
+    bad("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
          std::to_string(INT64_MAX) + "]");
   if (c.lattice != 0.0) {
-    if (c.dim != 1) fail("--lattice: a lattice start exists only in 1D (--dim 1)");
+    if (c.dim != 1) bad("--lattice: a lattice start exists only in 1D (--dim 1)");
     if (!(c.lattice > 1.0) || !std::isfinite(c.lattice))
-      fail("--lattice " + num(c.lattice) + ": spacing must exceed the diameter 1");
+      bad("--lattice " + num(c.lattice) + ": spacing must exceed the diameter 1");
   } else {
-    if (!(c.density > 0)) fail("--density " + num(c.density) + ": must be positive");
-    if (c.density > max_rsa_density(c.dim))
+    if (!(c.density > 0)) bad("--density " + num(c.density) + ": must be positive");
+    if (c.density > max_rsa_density(c.dim))  // a limit of the physics, not of the flag
       fail("--density " + num(c.density) + ": above " + num(max_rsa_density(c.dim)) +
            ", the most random sequential addition reaches in " + std::to_string(c.dim) + "D");
   }
   if (!(c.restitution >= 0 && c.restitution <= 1))
-    fail("--restitution " + num(c.restitution) + ": must lie in [0, 1]");
+    bad("--restitution " + num(c.restitution) + ": must lie in [0, 1]");
   if (!(c.cutoff >= 0) || !std::isfinite(c.cutoff))
-    fail("--cutoff " + num(c.cutoff) + ": must be finite and >= 0");
+    bad("--cutoff " + num(c.cutoff) + ": must be finite and >= 0");
   if (!(c.speed > 0) || !std::isfinite(c.speed))
-    fail("--speed " + num(c.speed) + ": must be positive");
+    bad("--speed " + num(c.speed) + ": must be positive");
   if (!(c.t_max > 0) || !std::isfinite(c.t_max))
-    fail("--t-max " + num(c.t_max) + ": must be positive");
+    bad("--t-max " + num(c.t_max) + ": must be positive");
   if (c.initial == Initial::Thermal && !(c.temperature > 0 && std::isfinite(c.temperature)))
-    fail("--temperature " + num(c.temperature) + ": must be positive");
+    bad("--temperature " + num(c.temperature) + ": must be positive");
   // Below three diameters a particle could meet its own periodic image within the cell stencil.
   if (c.box() < 3.0)
     fail("--particles " + std::to_string(c.particles) + ": box side " + num(c.box()) +

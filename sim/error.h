@@ -1,7 +1,7 @@
 #pragma once
 // Two error channels, as in pbrt-v4:
 //  - UserError: the input is wrong (a flag, a file, a density). The message names the input and
-//    is printed as one line by the command line; the program exits non-zero.
+//    is printed as one line by the command line; the program exits non-zero (UsageError: 2).
 //  - GS_CHECK: an invariant of the code is broken. That is a bug, never the user's fault; the
 //    process aborts with file and line so that it cannot go on producing wrong physics.
 #include <stdexcept>
@@ -12,6 +12,15 @@ namespace gs {
 class UserError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A UserError about the command line itself: a flag's value outside what the flag accepts (its
+// range, its words), or flags that exclude each other. The command line exits 2 for it, as for
+// the malformed values CLI11 refuses, and 1 for every other UserError (a file, a folder, physics
+// that cannot fit), so one value gives one exit code whichever subcommand checks it.
+class UsageError : public UserError {
+ public:
+  using UserError::UserError;
 };
 
 [[noreturn]] void check_failed(const char* expr, const char* file, int line,

@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
 #include <regex>
 #include <thread>
 
@@ -138,6 +140,110 @@ TEST(CliUsage, ExitCodeTable) {
     EXPECT_NE(read_file(out / "summary.json").find("\"interrupted\": true"), std::string::npos)
         << read_file(out / "summary.json");
   }
+}
+
+// One rule for every subcommand: a value outside what its flag accepts exits 2 with one line
+// naming the flag, whether CLI11 or the job checks it, so `run --dim 4` and `render --dim 4`
+// end alike.
+TEST(CliUsage, OutOfRangeValuesExitTwoInEverySubcommand) {
+  const fs::path dir = scratch_dir("range");
+  const std::string small = "--dim 2 --particles 200 --t-max 20 --quiet";
+  const auto made = grainshock("run " + small + " --out " + (dir / "ok").string());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string snap = (dir / "ok" / "snapshots" / "tsim_20.xyz").string();
+  ASSERT_TRUE(fs::exists(snap));
+  const std::string png = (dir / "a.png").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run --dim 4 --out " + (dir / "r1").string(), "--dim"},
+      {"run --restitution 1.5 --out " + (dir / "r2").string(), "--restitution"},
+      {"run " + small + " --png --width 0 --out " + (dir / "r3").string(), "0x1080"},
+      {"run " + small + " --sample-every -1 --out " + (dir / "r4").string(), "--sample-every"},
+      {"resume --checkpoint-every -1 " + (dir / "ok").string(), "--checkpoint-every"},
+      {"ensemble --dim 4 --out " + (dir / "e1").string(), "--dim"},
+      {"ensemble --realisations 0 --out " + (dir / "e2").string(), "--realisations"},
+      {"ensemble --resamples 3 --out " + (dir / "e3").string(), "--resamples"},
+      {"movie --dim 4 --out " + (dir / "m1").string(), "--dim"},
+      {"movie --frames 0 --out " + (dir / "m2").string(), "--frames"},
+      {"movie --camera round --out " + (dir / "m3").string(), "--camera"},
+      {"movie " + snap + " --seed 3 --out " + (dir / "m4").string(), "--seed"},
+      {"render --dim 4 " + snap + " --out " + png, "--dim"},
+      {"render " + snap + " --width 0 --out " + png, "0x1080"},
+      {"render " + snap + " --zoom -1 --out " + png, "--zoom"},
+      {"render " + snap + " --out " + (dir / "a.jpg").string(), "a.jpg"},
+      {"compare --max-blob -1 " + png + " " + png, "--max-blob"},
+      {"compare --diff " + (dir / "d.gif").string() + " " + png + " " + png, "d.gif"},
+      {"figures --format jpg --out " + (dir / "f1").string(), "--format"},
+      {"figures --threads 0 --out " + (dir / "f2").string(), "--threads"},
+      {"bench --repeat 0", "--repeat"},
+      {"merge --resamples 3 " + (dir / "ok").string() + " --out " + (dir / "g1").string(),
+       "--resamples"},
+      {"completion fish", "fish"},
+  };
+  for (const auto& [args, named] : cases) {
+    const auto r = grainshock(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
+  }
+  for (const char* out : {"r1", "r2", "r3", "r4", "e1", "e2", "e3", "m1", "m2", "m3", "m4", "f1",
+                          "f2", "g1", "a.png", "a.jpg"})
+    EXPECT_FALSE(fs::exists(dir / out)) << out;
+}
+
+// Ctrl-C tells the folder to resume, not the placeholder DIR.
+TEST(CliUsage, InterruptedRunNamesItsFolderToResume) {
+  const fs::path dir = scratch_dir("ctrlc");
+  fs::create_directories(dir);
+  const fs::path out = dir / "run", err = dir / "err.txt";
+  const pid_t pid = spawn_grainshock(
+      "run --dim 3 --particles 20000 --t-max 1e7 --out " + out.string(), err.string());
+  EXPECT_EQ(interrupt_when(pid, out / "timeseries.csv", SIGINT), 130);
+  const std::string text = read_file(err);
+  EXPECT_NE(text.find("(continue with: grainshock resume " + out.string() + ")"),
+            std::string::npos)
+      << text;
+}
+
+// --frame counts as ASE does (-1 the last), and a gzip-compressed snapshot draws as the plain
+// one; a .gz cut short, or a frame the file lacks, is one line naming it (exit 1).
+TEST(CliUsage, NegativeFramesAndGzipSnapshots) {
+  const fs::path dir = scratch_dir("frames");
+  const auto run = grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet "
+                              "--trajectory all.xyz --out " +
+                              dir.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string all = (dir / "all.xyz").string();
+  auto render = [&](const std::string& args, const std::string& png) {
+    return grainshock("render " + args + " --width 160 --height 120 --out " +
+                      (dir / png).string());
+  };
+  ASSERT_EQ(render(all + " --frame 1", "f1.png").exit_code, 0);
+  ASSERT_EQ(render(all + " --frame -1", "last.png").exit_code, 0);
+  ASSERT_EQ(render(all + " --frame -2", "first.png").exit_code, 0);
+  ASSERT_EQ(render(all + " --frame 0", "f0.png").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "last.png"), read_file(dir / "f1.png"));
+  EXPECT_EQ(read_file(dir / "first.png"), read_file(dir / "f0.png"));
+  EXPECT_NE(read_file(dir / "f0.png"), read_file(dir / "f1.png"));
+  for (const char* k : {"-3", "2"}) {
+    const auto r = render(all + " --frame " + k, "none.png");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << r.err;
+    EXPECT_NE(r.err.find(std::string("--frame ") + k + ": snapshot '" + all + "' has 2 frames"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "none.png"));
+
+  ASSERT_EQ(std::system(("gzip -k " + all).c_str()), 0);
+  ASSERT_EQ(render(all + ".gz --frame -1", "gz.png").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "gz.png"), read_file(dir / "f1.png"));
+  const std::string bytes = read_file(all + ".gz");
+  std::ofstream(dir / "cut.xyz.gz", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const auto r = render((dir / "cut.xyz.gz").string(), "cut.png");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("cut.xyz.gz': cut short"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "cut.png"));
 }
 
 // Without a terminal, progress is a plain line every few seconds, the first after half a second

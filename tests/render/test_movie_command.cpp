@@ -120,6 +120,63 @@ TEST(MovieCommand, MovieTomlReproducesTheMovie) {
   EXPECT_EQ(test::read_file(e / "movie.mp4"), test::read_file(d / "movie.mp4"));
 }
 
+// movie.toml names its snapshots relative to itself: made from the run folder with relative
+// names, it draws the same movie through --config from another folder, and from a copy of both
+// folders moved elsewhere.
+TEST(MovieCommand, MovieTomlWorksFromAnyFolder) {
+  const auto run = fresh_dir("anywhere_run"), a = fresh_dir("anywhere_a");
+  Result r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+                              run.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::grainshock("movie --quiet --width 160 --height 120 snapshots/tsim_50.xyz "
+                       "snapshots/tsim_100.xyz --out " + a.string(),
+                       "cd " + run.string() + " &&");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string toml = test::read_file(a / "movie.toml");
+  EXPECT_NE(toml.find("../anywhere_run/snapshots/tsim_50.xyz"), std::string::npos) << toml;
+  const auto b = fresh_dir("anywhere_b");
+  r = test::grainshock("movie --quiet --config " + (a / "movie.toml").string() + " --out " +
+                           b.string(),
+                       "cd / &&");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_file(b / "movie.mp4"), test::read_file(a / "movie.mp4"));
+
+  const auto moved = fresh_dir("anywhere_moved");
+  fs::create_directories(moved);
+  fs::copy(run, moved / "anywhere_run", fs::copy_options::recursive);
+  fs::copy(a, moved / "anywhere_a", fs::copy_options::recursive);
+  const auto c = fresh_dir("anywhere_c");
+  r = movie("--quiet --config " + (moved / "anywhere_a/movie.toml").string() + " --out " +
+            c.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_file(c / "movie.mp4"), test::read_file(a / "movie.mp4"));
+}
+
+// movie.toml is written by toml++ with each value typed by its flag: a snapshot named 1e2 (or
+// with a quote in its name) stays a string and is found again by --config.
+TEST(MovieCommand, MovieTomlKeepsFileNamesThatLookLikeNumbers) {
+  const auto run = fresh_dir("names_run"), a = fresh_dir("names_a"), b = fresh_dir("names_b");
+  Result r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+                              run.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Beside movie.toml, so that the names are written bare.
+  fs::create_directories(a);
+  fs::copy_file(run / "snapshots/tsim_50.xyz", a / "1e2");
+  fs::copy_file(run / "snapshots/tsim_100.xyz", a / "say\"when\"");
+  r = test::grainshock("movie --quiet --width 160 --height 120 1e2 'say\"when\"' --force --out .",
+                       "cd " + a.string() + " &&");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string toml = test::read_file(a / "movie.toml");
+  EXPECT_NE(toml.find("\nsnapshots = [ \"1e2\", \"say\\\"when\\\"\" ]\n"), std::string::npos)
+      << toml;
+  EXPECT_NE(toml.find("\ncrf = 18\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("\nazimuth = 30.0\n"), std::string::npos) << toml;
+  r = movie("--quiet --config " + (a / "movie.toml").string() + " --out " + b.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(decode_movie(b / "movie.mp4").frames, 2);
+  EXPECT_EQ(test::read_file(b / "movie.mp4"), test::read_file(a / "movie.mp4"));
+}
+
 TEST(MovieCommand, FrameTimesAreLinearOrLogarithmic) {
   const auto lin = fresh_dir("lin");
   ASSERT_EQ(movie(std::string(kSmallRun) +
