@@ -4,13 +4,21 @@
 // realisation is reproducible bit for bit whatever thread runs it. The generator is xoshiro256**
 // (Blackman & Vigna 2018) seeded through splitmix64; the distributions are written here rather
 // than taken from <random>, whose algorithms differ between standard libraries.
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
 
 namespace gs {
 
-enum class Stream : std::uint64_t { Positions = 1, Velocities = 2, Kick = 3, Bootstrap = 4 };
+enum class Stream : std::uint64_t {
+  Positions = 1,
+  Velocities = 2,
+  Kick = 3,
+  Bootstrap = 4,
+  Medium = 5  // the unbounded medium: one stream per cell, keyed further by the cell's coordinates
+};
 
 class Rng {
  public:
@@ -18,6 +26,18 @@ class Rng {
     std::uint64_t x = seed;
     x = splitmix(x) ^ (realisation * 0x9E3779B97F4A7C15ULL);
     x = splitmix(x) ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL);
+    for (auto& w : s_) w = splitmix(x);
+  }
+
+  // A sub-stream of (seed, realisation, purpose) keyed further by integers (a cell's coordinates):
+  // each key is mixed in by one more splitmix step, so distinct keys give unrelated streams.
+  template <std::size_t K>
+  Rng(std::uint64_t seed, std::uint64_t realisation, Stream purpose,
+      const std::array<std::int64_t, K>& key) {
+    std::uint64_t x = seed;
+    x = splitmix(x) ^ (realisation * 0x9E3779B97F4A7C15ULL);
+    x = splitmix(x) ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL);
+    for (const std::int64_t k : key) x = splitmix(x) ^ (static_cast<std::uint64_t>(k) * 0x8CB92BA72F3D8DD7ULL);
     for (auto& w : s_) w = splitmix(x);
   }
 
