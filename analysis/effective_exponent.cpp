@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <numbers>
 
 #include "analysis/quantile.h"
@@ -56,9 +55,10 @@ SlopeBand local_slope_band(std::span<const double> t,
   std::vector<std::size_t> draw(m);
   for (int r = 0; r < o.resamples; ++r) {
     for (auto& d : draw) d = std::size_t(rng.below(m));
-    const auto s = local_slope(t, mean_of(realisations, draw, n), o.half_width_decades);
+    auto s = local_slope(t, mean_of(realisations, draw, n), o.half_width_decades);
     for (std::size_t i = 0; i < n; ++i)
       if (std::isfinite(s[i])) per_point[i].push_back(s[i]);
+    b.draws.push_back(std::move(s));
   }
   for (std::size_t i = 0; i < n; ++i) {
     // A point whose slope some resamples cannot define (a zero nearby) has no band.
@@ -72,75 +72,209 @@ SlopeBand local_slope_band(std::span<const double> t,
   return b;
 }
 
+namespace {
+
+// Means of one slope series over the thirds of a window, from its prefix sums.
+struct Thirds {
+  std::size_t a, i1, i2, b;  // [a, i1), [i1, i2), [i2, b]
+  double drift(const std::vector<double>& prefix) const {
+    return mean(prefix, i2, b + 1) - mean(prefix, a, i1);
+  }
+  double curvature(const std::vector<double>& prefix) const {
+    return mean(prefix, i1, i2) - 0.5 * (mean(prefix, a, i1) + mean(prefix, i2, b + 1));
+  }
+  static double mean(const std::vector<double>& prefix, std::size_t lo, std::size_t hi) {
+    return (prefix[hi] - prefix[lo]) / double(hi - lo);
+  }
+};
+
+// Prefix sums of a slope series over the usable samples (others count 0; windows never hold
+// them).
+std::vector<double> prefix_of(const std::vector<double>& s, const std::vector<bool>& usable) {
+  std::vector<double> p(s.size() + 1, 0.0);
+  for (std::size_t i = 0; i < s.size(); ++i) p[i + 1] = p[i] + (usable[i] ? s[i] : 0.0);
+  return p;
+}
+
+double spread(std::span<const double> v) {
+  if (v.size() < 2) return 0;
+  double m = 0;
+  for (double x : v) m += x;
+  m /= double(v.size());
+  double q = 0;
+  for (double x : v) q += (x - m) * (x - m);
+  return std::sqrt(q / double(v.size() - 1));
+}
+
+}  // namespace
+
 Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
   const auto& t = band.t;
   const std::size_t n = t.size();
-  std::vector<double> lower(n), upper(n);
   std::vector<bool> usable(n);
+  std::vector<double> x(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double h = o.tolerance + 0.5 * (band.hi[i] - band.lo[i]);
     usable[i] = t[i] > 0 && t[i] >= o.t_min && t[i] <= o.t_max && std::isfinite(band.slope[i]) &&
-                std::isfinite(h);
-    lower[i] = band.slope[i] - h;
-    upper[i] = band.slope[i] + h;
+                std::isfinite(band.lo[i]) && std::isfinite(band.hi[i]);
+    x[i] = t[i] > 0 ? std::log(t[i]) : 0;
   }
-  // Two pointers: for each end b the earliest start a(b) whose intervals still intersect (a(b)
-  // never decreases), with monotone deques for the running max of `lower` and min of `upper`.
+  // seg[i]: the first sample of the run of usable samples that ends at i.
+  std::vector<std::size_t> seg(n, 0);
+  for (std::size_t i = 0; i < n; ++i) seg[i] = !usable[i] ? i + 1 : (i > 0 ? seg[i - 1] : 0);
+  const auto mean_prefix = prefix_of(band.slope, usable);
+  std::vector<std::vector<double>> draw_prefix;
+  for (const auto& d : band.draws) draw_prefix.push_back(prefix_of(d, usable));
   const double need = o.min_decades * std::numbers::ln10 * (1 - 1e-9);
-  std::deque<std::size_t> lo, hi;
-  std::size_t a = 0, best_a = 0, best_b = 0;
-  bool found = false;
-  for (std::size_t b = 0; b < n; ++b) {
-    if (!usable[b]) {
-      lo.clear();
-      hi.clear();
-      a = b + 1;
-      continue;
+
+  struct Verdict {
+    double drift, drift_error, curvature, curvature_error, excess;
+  };
+  std::vector<double> dd(draw_prefix.size()), kk(draw_prefix.size());
+  auto judge = [&](const Thirds& w) {
+    Verdict v{};
+    v.drift = w.drift(mean_prefix);
+    v.curvature = w.curvature(mean_prefix);
+    for (std::size_t k = 0; k < draw_prefix.size(); ++k) {
+      dd[k] = w.drift(draw_prefix[k]);
+      kk[k] = w.curvature(draw_prefix[k]);
     }
-    while (!lo.empty() && lower[lo.back()] <= lower[b]) lo.pop_back();
-    lo.push_back(b);
-    while (!hi.empty() && upper[hi.back()] >= upper[b]) hi.pop_back();
-    hi.push_back(b);
-    while (lower[lo.front()] > upper[hi.front()]) {
-      ++a;
-      while (lo.front() < a) lo.pop_front();
-      while (hi.front() < a) hi.pop_front();
-    }
-    if (std::log(t[b]) - std::log(t[a]) >= need) {
-      found = true;
-      best_a = a;
-      best_b = b;
-    }
-  }
+    v.drift_error = spread(dd);
+    v.curvature_error = spread(kk);
+    v.excess = std::max(std::fabs(v.drift) - (o.z * v.drift_error + o.floor),
+                        std::fabs(v.curvature) - (o.z * v.curvature_error + o.floor));
+    return v;
+  };
+
   Plateau p;
-  if (!found) {
-    // Say where the slope goes instead: its value at the first and last usable samples.
-    std::size_t first = n, last = n;
-    for (std::size_t i = 0; i < n; ++i)
-      if (usable[i]) {
-        if (first == n) first = i;
-        last = i;
+  bool any_window = false;
+  Verdict closest{};
+  Window closest_window;
+  closest.excess = std::numeric_limits<double>::infinity();
+  for (std::size_t b = n; b-- > 0;) {
+    if (!usable[b]) continue;
+    for (std::size_t a = seg[b]; a < b && x[b] - x[a] >= need; ++a) {
+      const double c1 = x[a] + (x[b] - x[a]) / 3, c2 = x[a] + 2 * (x[b] - x[a]) / 3;
+      const auto i1 = std::size_t(std::lower_bound(x.begin() + long(a), x.begin() + long(b), c1) -
+                                  x.begin());
+      const auto i2 = std::size_t(std::lower_bound(x.begin() + long(i1), x.begin() + long(b), c2) -
+                                  x.begin());
+      if (i1 <= a || i2 <= i1 || b < i2) continue;  // a third without a sample
+      any_window = true;
+      const Thirds w{a, i1, i2, b};
+      const Verdict v = judge(w);
+      if (v.excess <= 0) {
+        p.found = true;
+        p.window = {t[a], t[b]};
+        p.exponent = Thirds::mean(mean_prefix, a, b + 1);
+        p.drift = v.drift;
+        p.drift_error = v.drift_error;
+        p.curvature = v.curvature;
+        p.curvature_error = v.curvature_error;
+        return p;
       }
-    if (first == n) {
-      p.note = "no plateau within the run: no usable local slope";
-    } else {
-      p.note = "no plateau within the run: the local slope goes from " +
-               short_text(band.slope[first]) + " at t = " + short_text(t[first]) + " to " +
-               short_text(band.slope[last]) + " at t = " + short_text(t[last]) +
-               " and stays within +-(" + short_text(o.tolerance) + " + its band) over no " +
-               short_text(o.min_decades) + " decades";
+      if (v.excess < closest.excess) {
+        closest = v;
+        closest_window = {t[a], t[b]};
+      }
     }
-    return p;
   }
-  double mx = -std::numeric_limits<double>::infinity(), mn = -mx;
-  for (std::size_t i = best_a; i <= best_b; ++i) {
-    mx = std::max(mx, lower[i]);
-    mn = std::min(mn, upper[i]);
+  // Say where the slope goes instead: its value at the first and last usable samples, and the
+  // window that came closest.
+  std::size_t first = n, last = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (usable[i]) {
+      if (first == n) first = i;
+      last = i;
+    }
+  if (first == n) {
+    p.note = "no plateau within the run: no usable local slope";
+  } else if (!any_window) {
+    p.note = "no plateau within the run: the usable local slope spans less than " +
+             short_text(o.min_decades) + " decades";
+  } else {
+    p.note = "no plateau within the run: the local slope goes from " +
+             short_text(band.slope[first]) + " at t = " + short_text(t[first]) + " to " +
+             short_text(band.slope[last]) + " at t = " + short_text(t[last]) +
+             "; no window of " + short_text(o.min_decades) +
+             " decades or more has a drift within its error (closest: [" +
+             short_text(closest_window.t_lo) + ", " + short_text(closest_window.t_hi) +
+             "], drift " + short_text(closest.drift) + " +- " + short_text(closest.drift_error) +
+             ", curvature " + short_text(closest.curvature) + " +- " +
+             short_text(closest.curvature_error) + ")";
   }
-  p.found = true;
-  p.window = {t[best_a], t[best_b]};
-  p.exponent = 0.5 * (mx + mn);
   return p;
+}
+
+namespace {
+
+struct SlopeModel {
+  double b, k, omega, residual;
+};
+
+// s = b + k t^-omega by least squares over the samples `use`, for each omega of the grid.
+SlopeModel fit_slope_model(const std::vector<double>& t, const std::vector<double>& s,
+                           const std::vector<std::size_t>& use) {
+  SlopeModel best{0, 0, 0, std::numeric_limits<double>::infinity()};
+  for (int w = 2; w <= 40; ++w) {
+    const double omega = 0.05 * w;
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i : use) {
+      const double x = std::pow(t[i], -omega);
+      n += 1;
+      sx += x;
+      sy += s[i];
+      sxx += x * x;
+      sxy += x * s[i];
+    }
+    const double det = n * sxx - sx * sx;
+    if (!(det > 0)) continue;
+    const double k = (n * sxy - sx * sy) / det, b = (sy - k * sx) / n;
+    double res = 0;
+    for (std::size_t i : use) {
+      const double e = s[i] - b - k * std::pow(t[i], -omega);
+      res += e * e;
+    }
+    if (res < best.residual) best = {b, k, omega, res};
+  }
+  return best;
+}
+
+}  // namespace
+
+CorrectedExponent corrected_exponent(const SlopeBand& band, double t_lo, double t_hi,
+                                     double confidence) {
+  CorrectedExponent out;
+  std::vector<std::size_t> use;
+  for (std::size_t i = 0; i < band.t.size(); ++i)
+    if (band.t[i] >= t_lo && band.t[i] <= t_hi && std::isfinite(band.slope[i]) &&
+        std::isfinite(band.lo[i]))
+      use.push_back(i);
+  if (use.size() < 6) {
+    out.note = "fewer than 6 usable local slopes";
+    return out;
+  }
+  const SlopeModel m = fit_slope_model(band.t, band.slope, use);
+  if (!std::isfinite(m.residual)) {
+    out.note = "no fit";
+    return out;
+  }
+  out.found = true;
+  out.b = m.b;
+  out.k = m.k;
+  out.omega = m.omega;
+  out.window = {band.t[use.front()], band.t[use.back()]};
+  if (m.omega <= 0.1 + 1e-9 || m.omega >= 2 - 1e-9)
+    out.note = "omega at the edge of its grid [0.1, 2]";
+  std::vector<double> bs;
+  for (const auto& d : band.draws) {
+    const SlopeModel md = fit_slope_model(band.t, d, use);
+    if (std::isfinite(md.residual)) bs.push_back(md.b);
+  }
+  if (bs.size() >= 10) {
+    out.ci_lo = quantile(bs, (1 - confidence) / 2);
+    out.ci_hi = quantile(bs, (1 + confidence) / 2);
+  }
+  return out;
 }
 
 }  // namespace gs

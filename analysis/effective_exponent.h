@@ -5,12 +5,21 @@
 // returns an average of the drifting slope rather than a; the local slope shows the drift, and
 // the plateau rule says whether the run reached the asymptotic regime at all.
 //
-// Plateau rule: each sample i has an acceptance interval s_i +- h_i, where s_i is the local slope
-// of the mean curve and h_i = tolerance + half the width of its 95% bootstrap band. A window
-// of samples is a plateau when one exponent lies in every interval of the window (the intervals
-// intersect) and it spans at least min_decades of time. The plateau is the latest such window
-// (the asymptotic regime is the late one), extended as far back as the rule allows; none: "no
-// plateau within the run", and no fit is made.
+// Plateau rule (drift within its own error): a window [t_a, t_b] of usable samples spanning at
+// least min_decades is cut into three equal thirds in ln t. With s-bar_1, s-bar_2, s-bar_3 the
+// means of the local slope over the thirds,
+//   drift     D = s-bar_3 - s-bar_1                    (the slope's change across the window),
+//   curvature K = s-bar_2 - (s-bar_1 + s-bar_3) / 2    (a dip or bump a straight drift misses),
+// and sigma_D, sigma_K their standard deviations over the bootstrap resamples of the
+// realisations (the same resamples as the band, so the correlation of neighbouring slopes and of
+// the thirds is in them). The window is a plateau when |D| <= z sigma_D + floor and
+// |K| <= z sigma_K + floor (z = 2, ~95%; floor = 1e-3 only absorbs the rounding of exact
+// series; it is not a tolerance). A slope that drifts, however slowly, is therefore rejected as
+// soon as the data resolve the drift: more realisations make the rule stricter, not looser.
+// With one realisation there is no error and only a drift below the floor passes.
+// The plateau is the window ending latest (the asymptotic regime is the late one), extended as
+// far back as the rule allows; its exponent is the mean local slope over it, and its drift D with
+// sigma_D is reported with every fit. None: "no plateau within the run", and no fit is made.
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -34,13 +43,16 @@ struct SlopeBandOptions {
 // slope is undefined (a non-positive value nearby).
 struct SlopeBand {
   std::vector<double> t, slope, lo, hi;
+  // The resampled local slopes (one per resample, each on the grid t); empty for one realisation.
+  std::vector<std::vector<double>> draws;
 };
 SlopeBand local_slope_band(std::span<const double> t,
                            std::span<const std::vector<double>> realisations,
                            const SlopeBandOptions& options = {});
 
 struct PlateauOptions {
-  double tolerance = 0.02;  // added to the band's half width: a sample's acceptance interval
+  double z = 2;          // drift and curvature allowed: z standard deviations over resamples
+  double floor = 1e-3;   // added to z sigma: the rounding of an exact series, not a tolerance
   double min_decades = 0.5;
   double t_min = 0;  // only samples in [t_min, t_max]
   double t_max = std::numeric_limits<double>::infinity();
@@ -49,9 +61,32 @@ struct PlateauOptions {
 struct Plateau {
   bool found = false;
   Window window;
-  double exponent = std::numeric_limits<double>::quiet_NaN();  // mid-point of the intersection
+  double exponent = std::numeric_limits<double>::quiet_NaN();  // mean local slope over window
+  double drift = std::numeric_limits<double>::quiet_NaN();     // D, see the rule above
+  double drift_error = std::numeric_limits<double>::quiet_NaN();  // sigma_D
+  double curvature = std::numeric_limits<double>::quiet_NaN();    // K
+  double curvature_error = std::numeric_limits<double>::quiet_NaN();
   std::string note;  // where the slope goes when there is no plateau
 };
 Plateau find_plateau(const SlopeBand& band, const PlateauOptions& options = {});
+
+// The exponent with a correction to scaling, X = t^b (1 + c t^-omega) to first order: the local
+// slope fitted as s(t) = b + k t^-omega over the usable samples of [t_lo, t_hi], b and k by
+// least squares for each omega of the grid 0.1, 0.15, ..., 2, the omega of least squared
+// residual kept (an omega at the grid's edge is reported as such). Interval: the same fit of
+// every resampled slope (percentiles). Shows whether a plateau exponent short of the theory is
+// a finite-time correction (b moves towards the theory) or not (b stays).
+struct CorrectedExponent {
+  bool found = false;
+  double b = std::numeric_limits<double>::quiet_NaN();
+  double k = std::numeric_limits<double>::quiet_NaN();
+  double omega = std::numeric_limits<double>::quiet_NaN();
+  double ci_lo = std::numeric_limits<double>::quiet_NaN();
+  double ci_hi = std::numeric_limits<double>::quiet_NaN();
+  Window window;
+  std::string note;
+};
+CorrectedExponent corrected_exponent(const SlopeBand& band, double t_lo, double t_hi,
+                                     double confidence = 0.95);
 
 }  // namespace gs

@@ -136,6 +136,7 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
     e.slope = local_slope_band(t, curves, so);
     PlateauOptions po = o.plateau;
     po.t_min = std::max(po.t_min, t_start);
+    e.corrected = corrected_exponent(e.slope, std::max(t_start, t.back() / 100), t.back());
     Window w;
     if (o.window) {
       PlateauOptions inside = po;
@@ -236,6 +237,30 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
   const auto& an_sem = ts.column("anisotropy_sem");
   f.anisotropy = an.back();
   f.anisotropy_sem = an_sem.back();
+  {
+    // Weighted least squares of ln A on ln t over the last half decade.
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    std::size_t used = 0, first = t.size();
+    for (std::size_t i = t.size(); i-- > 0;) {
+      if (!(t[i] > 0) || std::log10(t.back() / t[i]) > 0.5) break;
+      if (!(an[i] > 0) || !(an_sem[i] > 0)) continue;
+      const double x = std::log(t[i]), y = std::log(an[i]);
+      const double w = (an[i] / an_sem[i]) * (an[i] / an_sem[i]);
+      sw += w;
+      sx += w * x;
+      sy += w * y;
+      sxx += w * x * x;
+      sxy += w * x * y;
+      ++used;
+      first = i;
+    }
+    const double det = sw * sxx - sx * sx;
+    if (used >= 3 && det > 0) {
+      f.anisotropy_slope = (sw * sxy - sx * sy) / det;
+      f.anisotropy_slope_error = std::sqrt(sw / det);
+      f.anisotropy_window = {t[first], t.back()};
+    }
+  }
 
   const auto& snaps = sums.snapshots();
   if (!snaps.empty() && sums.count() > 0) {
@@ -260,6 +285,18 @@ EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& o) {
     } catch (const UserError& err) {
       f.collapse_note = err.what();
     }
+    std::vector<CollapseSnapshot> sr, sv;
+    for (const auto& s : snaps) {
+      sr.push_back({s.t, s.radius.mean(), s.radius.standard_error()});
+      sv.push_back({s.t, s.speed.mean(), s.speed.standard_error()});
+    }
+    CollapseScanOptions cs;
+    cs.resamples = o.band_resamples;
+    cs.seed = spec.physics.seed;
+    cs.key = 300;
+    f.collapse_alpha_radius = best_collapse_alpha(sr, CollapseVariable::Radius, cs);
+    cs.key = 301;
+    f.collapse_alpha_speed = best_collapse_alpha(sv, CollapseVariable::Speed, cs);
   } else {
     f.collapse_note = "needs at least two snapshot times";
   }

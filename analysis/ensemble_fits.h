@@ -16,12 +16,15 @@
 //    alpha d (up to t_c2); t_c2: the time from which that slope stays above the band, if the
 //    data reach it; each with bootstrap draws for the intervals of phi1, phi2;
 //  - collapse quality Q (analysis/collapse.h) of t^alpha P(R,t) against R t^-alpha and of
-//    t^(alpha-1) P(v,t) against v t^(1-alpha) over the snapshot times;
-//  - A(t) at the last sample and the band measures at the last snapshot time.
+//    t^(alpha-1) P(v,t) against v t^(1-alpha) over the snapshot times, and the alpha that
+//    collapses each best with its interval (best_collapse_alpha);
+//  - A(t) at the last sample with its late local slope, and the band measures at the last
+//    snapshot time.
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "analysis/collapse.h"
 #include "analysis/crossover.h"
 #include "analysis/effective_exponent.h"
 #include "analysis/ensemble_sums.h"
@@ -49,6 +52,9 @@ struct ExponentFit {
   SlopeBand slope;
   Plateau plateau;
   PowerLawFit fit;  // NaN exponent when there is no plateau
+  // The local slope over its last two decades (after <N_t> >= 20) fitted with a correction to
+  // scaling, s = b + k t^-omega (effective_exponent.h).
+  CorrectedExponent corrected;
   // alpha implied by the exponent and its interval (half width of the bootstrap interval, or the
   // least-squares error for a single realisation); NaN for the collision count.
   double alpha = std::numeric_limits<double>::quiet_NaN();
@@ -69,7 +75,13 @@ struct EnsembleFits {
   double collapse_radius = std::numeric_limits<double>::quiet_NaN();
   double collapse_speed = std::numeric_limits<double>::quiet_NaN();
   std::string collapse_note;
+  CollapseAlpha collapse_alpha_radius, collapse_alpha_speed;
   double anisotropy = 0, anisotropy_sem = 0;  // at the last sample
+  // d ln A / d ln t over the last half decade: weighted least squares of ln A against ln t with
+  // the standard errors of the mean taken independent between samples; its standard error.
+  double anisotropy_slope = std::numeric_limits<double>::quiet_NaN();
+  double anisotropy_slope_error = std::numeric_limits<double>::quiet_NaN();
+  Window anisotropy_window;
   // Means and standard errors over realisations of the snapshot scalars at the last snapshot
   // time, by kSnapshotScalars name.
   std::vector<double> last_scalars, last_scalars_sem;

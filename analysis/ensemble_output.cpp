@@ -193,7 +193,16 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
       << ", \"standard_error\": " << json_number(e.fit.standard_error)
       << ", \"theory\": " << json_number(e.theory) << ", \"window\": ["
       << json_number(e.fit.window.t_lo) << ", " << json_number(e.fit.window.t_hi)
-      << "], \"points\": " << e.fit.points << ", \"alpha\": " << json_number(e.alpha)
+      << "], \"points\": " << e.fit.points
+      << ", \"plateau_drift\": " << json_number(e.plateau.drift)
+      << ", \"plateau_drift_error\": " << json_number(e.plateau.drift_error)
+      << ", \"plateau_curvature\": " << json_number(e.plateau.curvature)
+      << ", \"plateau_curvature_error\": " << json_number(e.plateau.curvature_error)
+      << ", \"corrected_exponent\": " << json_number(e.corrected.b)
+      << ", \"corrected_ci\": [" << json_number(e.corrected.ci_lo) << ", "
+      << json_number(e.corrected.ci_hi) << "], \"corrected_omega\": "
+      << json_number(e.corrected.omega)
+      << ", \"alpha\": " << json_number(e.alpha)
       << ", \"alpha_uncertainty\": " << json_number(e.alpha_uncertainty)
       << ", \"note\": " << json_string(e.note) << "}" << (k + 1 < f.exponents.size() ? "," : "")
       << "\n";
@@ -203,9 +212,11 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
     << json_string(
            "least-squares slope of ln <y> vs ln t over the window (automatic: the plateau of "
            "the local slope, analysis/effective_exponent.h: the latest window of >= 0.5 "
-           "decades, after <N_t> >= 20, in which one exponent lies within every sample's "
-           "slope +- (0.02 + half its bootstrap band); none: no fit); interval: 95% "
-           "percentile bootstrap over realisations")
+           "decades, after <N_t> >= 20, whose drift D (mean local slope of its last third "
+           "minus that of its first) and curvature K (middle third minus the mean of the "
+           "outer two) are both within 2 bootstrap standard deviations over realisations "
+           "(+ 1e-3); none: no fit); plateau_drift = D, plateau_drift_error = its standard "
+           "deviation; interval: 95% percentile bootstrap over realisations")
     << ",\n";
   // v_t is no fit of its own: v_rms^2 = 2 E / N holds exactly (analysis/ensemble_fits.h).
   j << "  \"v_t\": {\"identity\": \"v_rms^2 = 2 E_t / N_t\", \"max_relative_deviation\": "
@@ -228,8 +239,26 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
   j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";
   j << "  \"collapse_note\": " << json_string(f.collapse_note) << ",\n";
+  auto scan = [&](const char* key, const CollapseAlpha& c) {
+    j << "  \"" << key << "\": {\"best\": " << json_number(c.best)
+      << ", \"ci_lo\": " << json_number(c.ci_lo) << ", \"ci_hi\": " << json_number(c.ci_hi)
+      << ", \"q_best\": " << json_number(c.q_best)
+      << ", \"theory_inside\": " << (c.contains(f.alpha_theory) ? "true" : "false")
+      << ", \"note\": " << json_string(c.note) << "},\n";
+  };
+  scan("collapse_alpha_radius", f.collapse_alpha_radius);
+  scan("collapse_alpha_speed", f.collapse_alpha_speed);
+  j << "  \"collapse_alpha_definition\": "
+    << json_string("the alpha of [0.1, 0.6] (step 0.0025) minimising chi^2 per point of the "
+                   "mean scaled distributions against their mean (q_best: Q there); 95% interval over 200 parametric resamples of every bin "
+                   "(normal, its standard error over realisations)")
+    << ",\n";
   j << "  \"anisotropy_last\": " << json_number(f.anisotropy) << ",\n";
   j << "  \"anisotropy_last_sem\": " << json_number(f.anisotropy_sem) << ",\n";
+  j << "  \"anisotropy_slope\": " << json_number(f.anisotropy_slope)
+    << ", \"anisotropy_slope_error\": " << json_number(f.anisotropy_slope_error)
+    << ", \"anisotropy_slope_window\": [" << json_number(f.anisotropy_window.t_lo) << ", "
+    << json_number(f.anisotropy_window.t_hi) << "],\n";
   j << "  \"packing_typical\": " << json_number(f.packing_typical) << ",\n";
   j << "  \"packing_typical_sem\": " << json_number(f.packing_typical_sem) << ",\n";
   j << "  \"packing_upper\": " << json_number(f.packing_upper) << ",\n";

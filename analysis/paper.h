@@ -23,8 +23,13 @@ struct Comparison {
   double uncertainty = std::numeric_limits<double>::quiet_NaN();
   double theory = std::numeric_limits<double>::quiet_NaN();
   // equal: |measured - theory| <= max(uncertainty, tolerance); below: measured - uncertainty <
-  // theory.
+  // theory; inside: ci_lo <= theory <= ci_hi (an interval that need not be symmetric).
   std::string relation = "equal";
+  double ci_lo = std::numeric_limits<double>::quiet_NaN();
+  double ci_hi = std::numeric_limits<double>::quiet_NaN();
+  // false: another reading of a paper number whose declared reading is counted; shown in the
+  // sensitivity table, not in the agree/disagree count.
+  bool counted = true;
   double tolerance = 0;
   std::string source;  // where the theory value comes from
   std::string note;    // window, interval, or why nothing was measured
@@ -83,7 +88,12 @@ Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossover
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
 std::string comparisons_json(const std::vector<Comparison>& cmp);
+// The counted comparisons (the sensitivity readings go to sensitivity_markdown).
 std::string comparisons_markdown(const std::vector<Comparison>& cmp);
+std::string sensitivity_markdown(const std::vector<Comparison>& cmp);
+// The report's first section: how many counted numbers, how many agree, which do not and why,
+// which could not be measured.
+std::string comparison_summary_markdown(const std::vector<Comparison>& cmp);
 // The report's definitions of every measured quantity and agreement rule.
 std::string definitions_markdown();
 

@@ -77,22 +77,33 @@ struct Outcome {
   std::optional<Image> diff;  // of the picture, or of the movie's worst frame
 };
 
-std::string figures(const CompareCommand& o, double fraction, int max_diff, double psnr,
-                    double ssim) {
-  return number("%.4g", 100 * fraction) + "% of pixels differ by more than " +
-         std::to_string(o.compare.channel_tolerance) + " (" +
-         number("%.4g", 100 * o.compare.max_differing_fraction) +
-         "% allowed), largest channel difference " + std::to_string(max_diff) + ", PSNR " +
-         psnr_text(psnr) + " dB, SSIM " + number("%.4f", ssim);
+// Why alike or not: the largest blob that neither picture explains from the other, then the
+// totals and the summaries.
+std::string figures(const CompareCommand& o, const render::ImageComparison& c) {
+  const render::Blob& b = c.largest;
+  std::string t;
+  if (c.blobs == 0) {
+    t = "no pixel off its neighbours' blends by more than " +
+        std::to_string(o.compare.channel_tolerance);
+  } else {
+    t = "worst blob " + std::to_string(b.pixels) + " px (" + std::to_string(c.max_pixels) +
+        " allowed), mass " + std::to_string(b.mass) + " (" + std::to_string(c.max_mass) +
+        " allowed), at x " + std::to_string(b.x0) + "-" + std::to_string(b.x1) + ", y " +
+        std::to_string(b.y0) + "-" + std::to_string(b.y1) + ", off by up to " +
+        std::to_string(b.peak) + " (tolerance " + std::to_string(o.compare.channel_tolerance) +
+        "); " + std::to_string(c.differing) + " px in " + std::to_string(c.blobs) +
+        (c.blobs == 1 ? " blob" : " blobs");
+  }
+  return t + "; largest channel difference " + std::to_string(c.max_channel_difference) +
+         ", PSNR " + psnr_text(c.psnr) + " dB, SSIM " + number("%.4f", c.ssim);
 }
 
 Outcome compare_pngs(const CompareCommand& o) {
   const Image e = render::read_png(o.expected), a = render::read_png(o.actual);
   check_sizes(o, e.width, e.height, a.width, a.height);
   const render::ImageComparison c = render::compare_images(e, a, o.compare);
-  Outcome out{
-      c.match(), figures(o, c.differing_fraction(), c.max_channel_difference, c.psnr, c.ssim), {}};
-  if (!o.diff.empty()) out.diff = render::diff_image(e, a, o.compare.channel_tolerance);
+  Outcome out{c.match(), figures(o, c), {}};
+  if (!o.diff.empty()) out.diff = render::diff_image(e, a, o.compare);
   return out;
 }
 
@@ -110,19 +121,24 @@ Outcome compare_movies(const CompareCommand& o) {
     const int worst = s.worst_frame;
     s.add(render::compare_images(fe, fa, o.compare));
     if (!o.diff.empty() && s.worst_frame != worst)
-      out.diff = render::diff_image(fe, fa, o.compare.channel_tolerance);
+      out.diff = render::diff_image(fe, fa, o.compare);
   }
   while (e.next()) {
   }
   while (a.next()) {
   }
   out.match = s.match();
+  // The worst frame's figures, with PSNR and SSIM over the whole movie.
+  render::ImageComparison summary = s.worst;
+  summary.max_channel_difference = s.max_channel_difference;
+  summary.psnr = s.psnr();
+  summary.ssim = s.mean_ssim();
   out.line = (s.same_count ? ""
                            : std::to_string(e.frames_read()) + " frames against " +
                                  std::to_string(a.frames_read()) + "; ") +
-             figures(o, s.worst_fraction, s.max_channel_difference, s.psnr(), s.mean_ssim()) +
-             " (worst frame " + std::to_string(s.worst_frame) + " of " + std::to_string(s.frames) +
-             " compared; PSNR and SSIM over all)";
+             "worst frame " + std::to_string(s.worst_frame) + " of " + std::to_string(s.frames) +
+             " compared: " + figures(o, summary) +
+             " (largest channel difference, PSNR and SSIM over all frames)";
   return out;
 }
 
@@ -169,20 +185,27 @@ void add_compare_command(CLI::App& app) {
   sub->add_option("EXPECTED", o->expected, "The reference picture or movie")->required();
   sub->add_option("ACTUAL", o->actual, "The picture or movie to check")->required();
   sub->add_option("--tolerance", o->compare.channel_tolerance,
-                  "A pixel differs when R, G or B differs by more than this (of 255)")
+                  "A pixel differs when R, G or B lies further than this (of 255) from every "
+                  "blend of the other picture's pixel with a neighbour")
       ->check(CLI::Range(0, 255))
       ->capture_default_str();
-  sub->add_option("--max-fraction", o->compare.max_differing_fraction,
-                  "Alike when at most this fraction of the pixels differ (per frame)")
-      ->check(CLI::Range(0.0, 1.0))
+  sub->add_option("--max-blob", o->compare.max_blob_pixels,
+                  "Alike when no connected group of differing pixels has more than this many "
+                  "(per frame)")
+      ->check(CLI::Range(0L, 1L << 40))
+      ->capture_default_str();
+  sub->add_option("--max-mass", o->compare.max_blob_mass,
+                  "Alike when no blob's differences beyond the tolerance sum to more than this "
+                  "(levels x pixels, per frame)")
+      ->check(CLI::Range(0L, 1L << 40))
       ->capture_default_str();
   sub->add_option("--diff", o->diff,
                   "Write a PNG with the differing pixels in red (a movie's worst frame)");
   sub->add_flag("--update", o->update,
                 "Copy ACTUAL to EXPECTED when EXPECTED is missing or not alike; exit 0");
   sub->footer(
-      "Prints one line: alike or not alike, the fraction of differing pixels, the largest channel "
-      "difference, PSNR (over R, G, B) and SSIM (Wang et al. 2004, BT.709 luma, 11x11 Gaussian "
+      "Prints one line: alike or not alike, the largest blob of differing pixels (size, place, "
+      "how far off), the totals, the largest plain channel difference, PSNR (over R, G, B) and SSIM (Wang et al. 2004, BT.709 luma, 11x11 Gaussian "
       "window). Exit 0 alike, 1 not alike, 2 bad input (missing file, different sizes, not a PNG "
       "or movie).");
   sub->callback([o] {

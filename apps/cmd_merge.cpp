@@ -81,12 +81,12 @@ void run(const MergeOptions& o) {
     if (parts[k].first == parts[k - 1].first)
       throw UserError(parts[k].second.string() + ": realisation " + std::to_string(parts[k].first) +
                       " is also in " + parts[k - 1].second.string());
-  const FitOptions fit = fit_options(o.resamples, o.window, *first);
+  const FitOptions fit = jobs::fit_options(o.resamples, o.window, *first);
   EnsembleSums sums(*first);
   for (const auto& [index, p] : parts) sums.add(read_realisation(p, index), p.string());
   const auto dir = prepare_output_dir(o.out, o.force);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const EnsembleFits fits = write_ensemble_folder(dir, sums, fit, wall, 1);
+  const EnsembleFits fits = jobs::write_ensemble_folder(dir, sums, fit, wall, 1);
   std::fputs(exponent_table(sums, fits).c_str(), stdout);
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: merged %llu realisations from %zu folders into %s\n",

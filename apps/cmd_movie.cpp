@@ -122,6 +122,14 @@ void add_movie_flags(CLI::App& sub, MovieJob& job) {
       ->capture_default_str();
   sub.add_flag("--keep-frames", job.movie.keep_frames,
                "Also write every frame as DIR/frames/*.png");
+  sub.add_option("--dt", job.movie.read.dt,
+                 "Stored snapshots: time step of files that give steps but no time (LAMMPS dumps "
+                 "without ITEM: TIME, HOOMD GSD): time = step x DT; without it frames are "
+                 "labelled by step")
+      ->check(CLI::PositiveNumber);
+  sub.add_flag("--unwrap", job.movie.read.unwrap,
+               "Stored LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
+               "flags) instead of the positions in the cell, which OVITO draws by default");
   sub.add_option("--gl", job.movie.backend, "OpenGL context: auto, osmesa or egl")
       ->capture_default_str();
 }
@@ -170,6 +178,8 @@ void add_movie_command(CLI::App& app) {
       if (r.stopped) std::exit(128 + std::max(0, stop_signal()));
       return;
     }
+    if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
+      throw UserError("--dt and --unwrap read stored snapshots; a simulated movie has none");
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);

@@ -1,6 +1,8 @@
 // grainshock render: snapshot file(s) -> one PNG. Several snapshots make the Fig. 1(a) overlay.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <map>
+#include <set>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
@@ -24,6 +26,7 @@ void add_render_command(CLI::App& app) {
     std::string colormap = "magma", colour_by = "auto", background = "light", scale = "auto";
     std::string framing = "fit", backend = "auto";
     bool no_colorbar = false, no_time = false, no_legend = false;
+    bool inset = false, no_inset = false;
     int compression = 1;
     std::size_t frame = 0;
     ReadOptions read;
@@ -39,6 +42,13 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--dim", opt->read.dim, "Dimension of the files, if not the one they state")
       ->check(CLI::Range(1, 3));
+  sub->add_option("--dt", opt->read.dt,
+                  "Time step of files that give steps but no time (LAMMPS dumps without ITEM: "
+                  "TIME, HOOMD GSD): time = step x DT; without it such frames are labelled by step")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--unwrap", opt->read.unwrap,
+                "LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
+                "flags) instead of the positions in the cell, which OVITO draws by default");
   sub->add_option("--out", opt->out, "PNG file to write")->required();
   sub->add_option("--width", opt->view.width, "Picture width in pixels")->capture_default_str();
   sub->add_option("--height", opt->view.height, "Picture height in pixels")->capture_default_str();
@@ -63,8 +73,10 @@ void add_render_command(CLI::App& app) {
   sub->add_option("--scale", opt->scale,
                   "Colour scale lin, log or auto (log for speed and first-collision, else lin)")
       ->capture_default_str();
-  sub->add_flag("--inset", opt->style.inset,
-                "A profile of density and mean speed against distance, bottom left");
+  sub->add_flag("--inset", opt->inset,
+                "A profile of density and mean speed against distance, bottom left (the default "
+                "for a run's own snapshots, whose --png frames have it)");
+  sub->add_flag("--no-inset", opt->no_inset, "Leave out the inset, also for a run's snapshots");
   sub->add_flag("--show-inactive", opt->style.show_inactive,
                 "Also draw particles that never collided, in a faint neutral colour");
   sub->add_option("--background", opt->background, "light or dark")->capture_default_str();
@@ -83,6 +95,9 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--fov", opt->view.fov, "3D: vertical field of view, degrees")
       ->capture_default_str();
+  // The default of `movie` and of a run's pictures too: a kick's shell is hollow, so drawn whole
+  // it shows only its outer skin; the slab shows the band itself.
+  opt->view.slab = 6;
   sub->add_option("--slab", opt->view.slab,
                   "3D: keep a slab this thick through the centre, facing the camera (0: all)")
       ->capture_default_str();
@@ -131,6 +146,7 @@ void add_render_command(CLI::App& app) {
     if (!(o.view.fov > 0 && o.view.fov < 180)) throw UserError("--fov must be between 0 and 180");
     if (o.view.slab < 0 || o.view.distance < 0)
       throw UserError("--slab and --distance must be >= 0");
+    if (o.inset && o.no_inset) throw UserError("--inset and --no-inset exclude each other");
     // Everything the user typed is checked before any file is read or GL context made.
     render::check_size(o.view.width, o.view.height, 16384);
     render::check_style(st);
@@ -139,6 +155,8 @@ void add_render_command(CLI::App& app) {
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
     for (const auto& path : o.inputs) snaps.push_back(read_snapshot(path, o.read, o.frame));
+    // A run's own snapshot (it names its seed) is drawn as the run drew it: with the inset.
+    st.inset = o.inset || (!o.no_inset && snaps.front().info.seed.has_value());
     // One snapshot is coloured by a field (several by time): the first file read decides what
     // "auto" means, and names what it lacks.
     if (snaps.size() == 1) {
@@ -147,6 +165,12 @@ void add_render_command(CLI::App& app) {
       st.scale = render::parse_scale(o.scale, st.field);
       render::check_style(st);
     }
+    // What the readers assumed where the files say nothing, each sentence once.
+    std::set<std::string> said;
+    for (std::size_t k = 0; k < snaps.size(); ++k)
+      for (const auto& note : snaps[k].notes)
+        if (said.insert(note).second)
+          std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs[k].c_str(), note.c_str());
     std::vector<const Snapshot*> ptrs;
     for (const auto& s : snaps) ptrs.push_back(&s);
 

@@ -1,6 +1,6 @@
 // `grainshock resume DIR`: continues a run folder from its last checkpoint (jobs/run_job.h), a
 // movie folder from its (jobs/movie.h), or an unfinished ensemble folder from its finished
-// realisations (apps/ensemble_cli.h).
+// realisations (jobs/ensemble_job.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -52,7 +52,7 @@ void add_resume_command(CLI::App& app) {
       return;
     }
     if (std::filesystem::exists(dir / "ensemble.toml")) {
-      const int rc = resume_ensemble(dir, opt->threads, opt->quiet);
+      const int rc = resume_ensemble_command(dir, opt->threads, opt->quiet);
       if (rc != 0) throw Exit{rc};
       return;
     }

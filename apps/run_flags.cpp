@@ -5,6 +5,7 @@
 
 #include "apps/cli.h"
 #include "io/snapshot_writer.h"
+#include "io/trajectory.h"
 #include "sim/error.h"
 
 namespace gs::app {
@@ -44,8 +45,27 @@ void add_run_flags(CLI::App& sub, RunOptions& o) {
          "all, or active: only the particles that have collided (pictures and fronts, not "
          "packing, which needs the gas at rest)")
       ->option_text("all|active (all)");
+  sub.add_option_function<std::string>(
+         "--trajectory",
+         [&o](const std::string& v) {
+           if (v.empty()) return o.trajectory.clear();  // none, as run.toml says when unset
+           const bool plain = !v.empty() && v[0] != '.' &&
+                              v.find_first_not_of(
+                                  "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                  "0123456789._-") == std::string::npos;
+           if (!plain)
+             throw CLI::ValidationError(
+                 "--trajectory",
+                 "'" + v + "' is not a file name in the run folder (letters, digits, . _ -)");
+           trajectory_format(v);  // UserError for another extension
+           o.trajectory = v;
+         },
+         "Also write every snapshot time into DIR/FILE, one trajectory that OVITO and ASE open as "
+         "a sequence: FILE.gsd (HOOMD GSD) or FILE.xyz (extended XYZ)")
+      ->option_text("FILE.gsd|FILE.xyz");
   sub.add_flag("--png", o.png,
-               "Draw every snapshot into frames/*.png (colour = speed) and overlay them all");
+               "Draw every snapshot into frames/*.png (colour = v / v_rms for a kick, speed for a "
+               "thermal gas) and overlay them all");
   sub.add_flag("--compare-elastic", o.compare_elastic,
                "Also run the same kick with r = 1 to half of t-max, like the paper's Fig. 1(b)");
   sub.add_flag("--movie", o.movie,

@@ -3,10 +3,12 @@
 // upload, draw, read back, draw the overlays.
 #include <unistd.h>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -17,6 +19,7 @@
 
 #include "bench/bench.h"
 #include "io/xyz.h"
+#include "render/colormap.h"
 #include "render/movie_writer.h"
 #include "render/png.h"
 #include "render/renderer.h"
@@ -201,6 +204,203 @@ std::vector<Figure> inset_cost() {
           {"inset_extra_fraction", b / a - 1, "", "<= 0.05"}};
 }
 
+// The limit a frame is measured against (issue 32): the plainest banded splatter of the same
+// discs, written for this bench only. Per frame it maps each particle to pixels (the box
+// framed as render/discs_2.5e5 frames it), colours an active one by its speed through a
+// 256-entry table on a fixed range, sorts the discs into bands of 32 rows (a counting sort),
+// and on one thread fills each band with the background and stamps its discs: opaque (every
+// pixel whose centre lies within the radius takes the colour) or antialiased (coverage from the
+// distance to the rim, as the renderer's rule, blended in float). Buffers are kept across
+// frames. What it leaves out of a real frame: percentiles, the colour bar and the time label.
+class PlainSplat {
+ public:
+  explicit PlainSplat(bool antialiased) : aa_(antialiased) {}
+
+  void frame(const Snapshot& s, int w, int h) {
+    const double side = s.info.box[0];
+    const double ppu = std::min(w, h) / side;
+    const double x0 = s.info.origin[0] + side / 2 - w / (2 * ppu);
+    const double y0 = s.info.origin[1] + side / 2 + h / (2 * ppu);  // world y of the top row
+    const std::size_t n = s.size();
+    discs_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d& p = s.position[i];
+      std::uint32_t c = 0xffcececeu;  // inactive grey
+      if (s.active[i]) {
+        const double v = s.velocity[i].norm();
+        c = lut_[static_cast<std::size_t>(std::clamp(v * (255 / 1.2), 0.0, 255.0))];
+      }
+      discs_[i] = {static_cast<float>((p.x() - x0) * ppu), static_cast<float>((y0 - p.y()) * ppu),
+                   static_cast<float>(s.radius[i] * ppu), c};
+    }
+    const int bands = (h + kBand - 1) / kBand;
+    start_.assign(bands + 2, 0);
+    for (const Disc& d : discs_)
+      for (int b = band(d.y - d.r - 0.5f, bands); b <= band(d.y + d.r + 0.5f, bands); ++b)
+        ++start_[b + 1];
+    for (int b = 0; b < bands; ++b) start_[b + 1] += start_[b];
+    binned_.resize(start_[bands]);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (const Disc& d : discs_)
+      for (int b = band(d.y - d.r - 0.5f, bands); b <= band(d.y + d.r + 0.5f, bands); ++b)
+        binned_[fill_[b]++] = d;
+    pixels_.resize(static_cast<std::size_t>(w) * h);
+    for (int b = 0; b < bands; ++b) {
+      const int r0 = b * kBand, r1 = std::min(h, r0 + kBand);
+      std::fill(pixels_.begin() + static_cast<std::ptrdiff_t>(r0) * w,
+                pixels_.begin() + static_cast<std::ptrdiff_t>(r1) * w, 0xffffffffu);
+      for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
+        aa_ ? smooth(binned_[k], w, r0, r1) : stamp(binned_[k], w, r0, r1);
+    }
+  }
+  std::size_t checksum() const {
+    std::size_t sum = 0;
+    for (std::uint32_t p : pixels_) sum += p & 0xffffff;
+    return sum;
+  }
+
+ private:
+  static constexpr int kBand = 32;
+  struct Disc {
+    float x, y, r;
+    std::uint32_t rgba;
+  };
+  static int band(float y, int bands) {
+    return std::clamp(static_cast<int>(std::floor(y)) / kBand, 0, bands - 1);
+  }
+  void stamp(const Disc& d, int w, int r0, int r1) {
+    const float r2 = d.r * d.r;
+    const int ya = std::max(r0, static_cast<int>(std::ceil(d.y - d.r - 0.5f)));
+    const int yb = std::min(r1 - 1, static_cast<int>(std::floor(d.y + d.r - 0.5f)));
+    for (int y = ya; y <= yb; ++y) {
+      const float dy = y + 0.5f - d.y, half = std::sqrt(std::max(r2 - dy * dy, 0.0f));
+      const int xa = std::max(0, static_cast<int>(std::ceil(d.x - half - 0.5f)));
+      const int xb = std::min(w - 1, static_cast<int>(std::floor(d.x + half - 0.5f)));
+      std::uint32_t* row = &pixels_[static_cast<std::size_t>(y) * w];
+      for (int x = xa; x <= xb; ++x) row[x] = d.rgba;
+    }
+  }
+  void smooth(const Disc& d, int w, int r0, int r1) {
+    const int ya = std::max(r0, static_cast<int>(std::floor(d.y - d.r)));
+    const int yb = std::min(r1 - 1, static_cast<int>(std::ceil(d.y + d.r)) - 1);
+    const int xa = std::max(0, static_cast<int>(std::floor(d.x - d.r)));
+    const int xb = std::min(w - 1, static_cast<int>(std::ceil(d.x + d.r)) - 1);
+    const float cr = float(d.rgba & 0xff), cg = float(d.rgba >> 8 & 0xff),
+                cb = float(d.rgba >> 16 & 0xff);
+    for (int y = ya; y <= yb; ++y) {
+      const float dy = y + 0.5f - d.y;
+      std::uint32_t* row = &pixels_[static_cast<std::size_t>(y) * w];
+      for (int x = xa; x <= xb; ++x) {
+        const float dx = x + 0.5f - d.x;
+        const float a = std::min(d.r + 0.5f - std::sqrt(dx * dx + dy * dy), 1.0f);
+        if (a <= 0) continue;
+        const std::uint32_t p = row[x];
+        const float pr = float(p & 0xff), pg = float(p >> 8 & 0xff), pb = float(p >> 16 & 0xff);
+        row[x] = 0xff000000u | static_cast<std::uint32_t>(pr + a * (cr - pr) + 0.5f) |
+                 static_cast<std::uint32_t>(pg + a * (cg - pg) + 0.5f) << 8 |
+                 static_cast<std::uint32_t>(pb + a * (cb - pb) + 0.5f) << 16;
+      }
+    }
+  }
+
+  bool aa_;
+  std::vector<Disc> discs_, binned_;
+  std::vector<std::uint32_t> start_, fill_, pixels_;
+  std::array<std::uint32_t, 256> lut_ = [] {
+    std::array<std::uint32_t, 256> t{};
+    const render::Colormap m = render::Colormap::by_name("magma");
+    for (int i = 0; i < 256; ++i) {
+      const render::Rgb8 c = m.at8(i / 255.0);
+      t[i] = 0xff000000u | c[0] | c[1] << 8 | std::uint32_t(c[2]) << 16;
+    }
+    return t;
+  }();
+};
+
+std::vector<Figure> plain_splat(bool antialiased, const std::string& target) {
+  const auto s = synthetic(2, 250000, 1000, 300, 330);
+  PlainSplat p(antialiased);
+  p.frame(s, 1920, 1080);
+  const int frames = 15;
+  std::vector<double> cpu;
+  for (int k = 0; k < frames; ++k) {
+    const double c0 = cpu_seconds();
+    p.frame(s, 1920, 1080);
+    cpu.push_back(1e3 * (cpu_seconds() - c0));
+  }
+  std::sort(cpu.begin(), cpu.end());
+  return {{"cpu_ms_per_frame", cpu[cpu.size() / 2], "ms", target},
+          {"cpu_ms_per_frame_min", cpu.front(), "ms", ""},
+          {"checksum", static_cast<double>(p.checksum() % 1000000), "", ""}};
+}
+
+// LAMMPS `dump image` of render/discs_2.5e5's scene (issue 32): the same 2.5e5 discs in the
+// same box, 1920x1080, type 1 inactive and type 2 active, written as PPM (no PNG encoding). The
+// cost of an image is the CPU time of `run 20` less that of `run 0` (set-up and the image every
+// run writes at its start), over 20. Skipped (exit_ok 0) when `lmp` is not on the PATH.
+double lammps_cpu_seconds(const std::filesystem::path& dir, int images) {
+  const std::string in = (dir / ("in." + std::to_string(images))).string();
+  {
+    std::ofstream f(in);
+    f << "units lj\ndimension 2\nboundary p p p\natom_style atomic\nread_data "
+      << (dir / "scene.data").string() << "\nmass * 1\npair_style zero 1.0\npair_coeff * *\n"
+      << "neighbor 0.3 bin\nneigh_modify delay 0 every 1000000 check no\n"
+      << "dump d all image 1 " << (dir / ("img" + std::to_string(images) + ".*.ppm")).string()
+      << " type type size 1920 1080 view 0 0 zoom 1.77 box no 0.0\n"
+      << "dump_modify d adiam * 1.0 backcolor white acolor 1 gray acolor 2 orange\n"
+      << "run " << images << "\n";
+  }
+  std::vector<std::string> args = {"lmp", "-in", in, "-log", "none", "-screen", "none"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  rusage before{}, after{};
+  getrusage(RUSAGE_CHILDREN, &before);
+  pid_t pid = -1;
+  int status = -1;
+  if (posix_spawnp(&pid, "lmp", nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  waitpid(pid, &status, 0);
+  getrusage(RUSAGE_CHILDREN, &after);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1;
+  auto secs = [](const timeval& t) { return t.tv_sec + 1e-6 * t.tv_usec; };
+  return secs(after.ru_utime) - secs(before.ru_utime) + secs(after.ru_stime) -
+         secs(before.ru_stime);
+}
+
+std::vector<Figure> lammps_dump_image() {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("grainshock-lmp-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const auto s = synthetic(2, 250000, 1000, 300, 330);
+  {
+    std::ofstream f(dir / "scene.data");
+    f << "render/discs_2.5e5's scene\n\n" << s.size() << " atoms\n2 atom types\n\n"
+      << "0 1000 xlo xhi\n0 1000 ylo yhi\n-0.5 0.5 zlo zhi\n\nAtoms # atomic\n\n";
+    f.precision(10);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      f << i + 1 << ' ' << (s.active[i] ? 2 : 1) << ' ' << s.position[i].x() << ' '
+        << s.position[i].y() << " 0\n";
+  }
+  const int images = 20;
+  double per_image = -1;
+  const double none = lammps_cpu_seconds(dir, 0);
+  const double some = none < 0 ? -1 : lammps_cpu_seconds(dir, images);
+  if (some >= 0) per_image = 1e3 * (some - none) / images;
+  fs::remove_all(dir);
+  // Ours on the same scene, in the same process: the ratio of two CPU times measured minutes
+  // apart at most.
+  render::Style st;
+  st.show_inactive = true;
+  auto v = full_hd();
+  v.framing = render::Framing::Box;
+  const auto ours = measure(s, st, v, "");
+  const double ours_cpu = ours[2].value;
+  return {{"lammps_cpu_ms_per_image", per_image, "ms", ""},
+          {"grainshock_cpu_ms_per_frame", ours_cpu, "ms", ""},
+          {"lammps_over_grainshock", per_image > 0 ? per_image / ours_cpu : 0, "", ">= 5"},
+          {"exit_ok", per_image > 0 ? 1.0 : 0.0, "", "1"}};
+}
+
 }  // namespace
 
 void add_render_cases(std::vector<Case>& cases) {
@@ -222,6 +422,15 @@ void add_render_cases(std::vector<Case>& cases) {
          // 167 ms of CPU before the discs were splatted by bands of rows on two threads.
          return measure(s, st, v, "cpu <= 56 ms");
        }});
+  cases.push_back({"render/plain_splat_2.5e5",
+                   "the limit: a plain banded splatter of render/discs_2.5e5's discs, opaque",
+                   false, [] { return plain_splat(false, ""); }});
+  cases.push_back({"render/plain_splat_aa_2.5e5",
+                   "the limit: a plain banded splatter of render/discs_2.5e5's discs, antialiased",
+                   false, [] { return plain_splat(true, ""); }});
+  cases.push_back({"render/lammps_dump_image_2.5e5",
+                   "LAMMPS dump image (PPM) of render/discs_2.5e5's scene against ours", true,
+                   lammps_dump_image});
   cases.push_back(
       {"render/discs_2e4_active", "2D, 2e4 active discs in a band, fitted, 1920x1080", false, [] {
          const auto s = band_only(20000, 1000, 300, 330);

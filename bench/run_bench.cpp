@@ -11,6 +11,9 @@
 #include "jobs/run_loop.h"
 
 namespace gs::bench {
+using jobs::RunLoop;
+using jobs::RunPlan;
+
 namespace {
 
 namespace fs = std::filesystem;

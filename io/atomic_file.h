@@ -13,4 +13,23 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view text)
 void write_file_atomic(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> pieces);
 
+// The same for a file written piece by piece (a trajectory of many frames, never whole in
+// memory): pieces go to a temporary beside `path`; finish() may overwrite its first bytes (a
+// header known only at the end) and renames it. Destroyed unfinished, the temporary is removed.
+class AtomicFileWriter {
+ public:
+  AtomicFileWriter() = default;
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  void open(const std::filesystem::path& path);
+  void write(std::string_view piece);
+  void finish(std::string_view head = {});
+
+ private:
+  [[noreturn]] void fail(const std::string& why);
+  std::filesystem::path path_, tmp_;
+  int fd_ = -1;
+};
+
 }  // namespace gs

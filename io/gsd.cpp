@@ -61,7 +61,7 @@ class GsdSource final : public FrameSource {
  public:
   explicit GsdSource(MappedFile f);
   std::size_t frames() const override { return frames_; }
-  Snapshot read(std::size_t k) const override;
+  Snapshot read(std::size_t k, const ReadOptions& options) const override;
   const char* format() const override { return "GSD"; }
 
  private:
@@ -212,7 +212,7 @@ std::vector<double> GsdSource::values(const Entry& e) const {
   return v;
 }
 
-Snapshot GsdSource::read(std::size_t k) const {
+Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   const std::string where = "frame " + std::to_string(k);
   auto bad = [&](const std::string& what) { fail(where + ": " + what); };
   Snapshot s;
@@ -233,7 +233,12 @@ Snapshot GsdSource::read(std::size_t k) const {
     return static_cast<std::uint64_t>(v);
   };
   s.info.step = static_cast<std::int64_t>(count("configuration/step"));
-  if (const Entry* t = find(k, "log/grainshock/time", false)) s.info.time = values(*t)[0];
+  // The time where OVITO shows it (log/Time: its global attribute Time) or, in files of
+  // earlier versions, ours; HOOMD itself keeps none.
+  const Entry* t = find(k, "log/Time", false);
+  if (!t) t = find(k, "log/grainshock/time", false);
+  if (t && t->n * t->m == 1) s.info.time = values(*t)[0];
+  s.info.has_time = t && t->n * t->m == 1;
   std::vector<double> box = {1, 1, 1, 0, 0, 0};
   if (const Entry* e = find(k, "configuration/box")) {
     if (e->n * e->m != 6) bad("configuration/box does not have 6 values");
@@ -272,10 +277,24 @@ Snapshot GsdSource::read(std::size_t k) const {
           bad("particle " + std::to_string(i) + " has a non-finite position");
       }
   }
+  // Ours are unwrapped by their image counts (our snapshots are unwrapped); others' only when
+  // asked, as OVITO draws them in the cell by default, with the counts as columns.
+  const bool ours = file_.bytes().substr(48, 11) == std::string_view("grainshock\0", 11);
   if (const Entry* img = per_particle("particles/image", 3, true)) {
     const auto v = values(*img);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) s.position[i][a] += v[3 * i + a] * box[a];
+    if (ours || options.unwrap) {
+      for (std::size_t i = 0; i < n; ++i)
+        for (int a = 0; a < 3; ++a) s.position[i][a] += v[3 * i + a] * box[a];
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        Column c{std::string("image_") + "xyz"[a], std::vector<double>(n)};
+        for (std::size_t i = 0; i < n; ++i) c.values[i] = v[3 * i + a];
+        s.columns.push_back(std::move(c));
+      }
+      if (std::any_of(v.begin(), v.end(), [](double x) { return x != 0; }))
+        s.notes.push_back("positions in the cell, as OVITO draws them (--unwrap adds the image "
+                          "counts times the box)");
+    }
   }
   // The schema's default velocity is 0: writers leave the chunk out when all are at rest.
   s.velocity.assign(n, Eigen::Vector3d::Zero());
@@ -324,9 +343,12 @@ Snapshot GsdSource::read(std::size_t k) const {
   return s;
 }
 
-// Appends one chunk's bytes and its index entry.
+// The chunks of a file's frames: their bytes (from byte 256 on; a trajectory hands them on to
+// its file after each frame), the index and the names.
 struct Writer {
-  std::string data;  // the file from byte 256 on, up to the index
+  std::string data;
+  std::uint64_t written = 0;  // bytes of data already handed on
+  std::uint64_t frame = 0;
   std::vector<Entry> index;
   std::vector<std::string> names;
 
@@ -335,14 +357,104 @@ struct Writer {
              const std::vector<T>& v) {
     GS_CHECK(v.size() == n * m && type_size(type) == sizeof(T));
     Entry e;
+    e.frame = frame;
     e.n = n;
     e.m = m;
     e.type = type;
-    e.id = static_cast<std::uint16_t>(names.size());
-    e.location = static_cast<std::int64_t>(kHeaderSize + data.size());
-    names.push_back(name);
+    const auto known = std::find(names.begin(), names.end(), name);
+    e.id = static_cast<std::uint16_t>(known - names.begin());
+    if (known == names.end()) names.push_back(name);
+    e.location = static_cast<std::int64_t>(kHeaderSize + written + data.size());
     data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     index.push_back(e);
+  }
+
+  // One frame in the hoomd schema. A lone frame leaves out the chunks at the schema's defaults
+  // (image 0, diameter 1); a trajectory's frames hold them all, since a reader takes a chunk a
+  // frame lacks from frame 0 (HOOMD's rule), not from the schema.
+  void add_frame(const Snapshot& s, bool every_chunk) {
+    const std::size_t n = s.size();
+    GS_CHECK(s.info.dim >= 2 && s.radius.size() == n && s.active.size() == n);
+    chunk("configuration/step", U64, 1, 1,
+          std::vector<std::uint64_t>{static_cast<std::uint64_t>(std::max<std::int64_t>(
+              0, s.info.step.value_or(0)))});
+    chunk("configuration/dimensions", U8, 1, 1,
+          std::vector<std::uint8_t>{static_cast<std::uint8_t>(s.info.dim)});
+    std::vector<float> box = {1, 1, 0, 0, 0, 0};
+    for (int a = 0; a < 3; ++a) box[a] = static_cast<float>(s.info.box[a]);
+    chunk("configuration/box", F32, 6, 1, box);
+    chunk("particles/N", U32, 1, 1, std::vector<std::uint32_t>{static_cast<std::uint32_t>(n)});
+    // HOOMD keeps positions in the box centred on the origin and counts the wraps in image.
+    std::vector<float> pos(3 * n), vel(s.has_velocity() ? 3 * n : 0), diameter(n);
+    std::vector<std::int32_t> image(3 * n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int a = 0; a < 3; ++a) {
+        double x = s.position[i][a];
+        const double edge = s.info.box[a];
+        if (edge > 0) {
+          const double u = x - s.info.origin[a];
+          const double wraps = std::floor(u / edge);
+          image[3 * i + a] = static_cast<std::int32_t>(wraps);
+          x = u - wraps * edge - edge / 2;
+        }
+        pos[3 * i + a] = static_cast<float>(x);
+        if (!vel.empty()) vel[3 * i + a] = static_cast<float>(s.velocity[i][a]);
+      }
+      diameter[i] = static_cast<float>(2 * s.radius[i]);
+    }
+    // Left out of a lone frame at their defaults, as HOOMD does: a 2e6-sphere snapshot is 28 MB
+    // smaller.
+    chunk("particles/position", F32, n, 3, pos);
+    if (every_chunk || std::any_of(image.begin(), image.end(), [](std::int32_t i) { return i; }))
+      chunk("particles/image", I32, n, 3, image);
+    if (!vel.empty())
+      chunk("particles/velocity", F32, n, 3, vel);
+    else if (every_chunk)
+      chunk("particles/velocity", F32, n, 3, std::vector<float>(3 * n, 0.0f));
+    if (every_chunk || std::any_of(diameter.begin(), diameter.end(), [](float d) { return d != 1; }))
+      chunk("particles/diameter", F32, n, 1, diameter);
+    chunk("log/particles/active", U8, n, 1, s.active);
+    if (!s.first_collision.empty())
+      chunk("log/particles/first_collision", F64, n, 1, s.first_collision);
+    // OVITO makes a global attribute of each log/NAME chunk (one slash): log/Time is its Time,
+    // and gsd.hoomd's frame.log['Time'].
+    if (s.info.has_time) chunk("log/Time", F64, 1, 1, std::vector<double>{s.info.time});
+    ++frame;
+  }
+
+  // The header for data of `written` bytes followed by the index and the names, and the index
+  // and names themselves.
+  std::pair<std::string, std::string> header_and_tail() const {
+    std::string list;
+    for (const auto& nm : names) list.append(nm).push_back('\0');
+    list.push_back('\0');
+    list.resize((list.size() + kNameSegment - 1) / kNameSegment * kNameSegment, '\0');
+    const std::uint64_t index_location = kHeaderSize + written;
+    const std::uint64_t names_location = index_location + index.size() * kEntrySize;
+    std::string head(kHeaderSize, '\0');
+    auto put = [&](std::size_t at, auto v) { std::memcpy(head.data() + at, &v, sizeof v); };
+    put(0, kMagic);
+    put(8, index_location);
+    put(16, static_cast<std::uint64_t>(index.size()));
+    put(24, names_location);
+    put(32, static_cast<std::uint64_t>(list.size() / kNameSegment));
+    put(40, std::uint32_t{(1u << 16) | 4u});  // hoomd schema 1.4
+    put(44, std::uint32_t{2u << 16});         // file layer 2.0
+    std::memcpy(head.data() + 48, "grainshock", 10);
+    std::memcpy(head.data() + 112, "hoomd", 5);
+    std::string tail;
+    for (const Entry& e : index) {
+      char rec[kEntrySize] = {};
+      std::memcpy(rec, &e.frame, 8);
+      std::memcpy(rec + 8, &e.n, 8);
+      std::memcpy(rec + 16, &e.location, 8);
+      std::memcpy(rec + 24, &e.m, 4);
+      std::memcpy(rec + 28, &e.id, 2);
+      std::memcpy(rec + 30, &e.type, 1);
+      tail.append(rec, kEntrySize);
+    }
+    tail += list;
+    return {head, tail};
   }
 };
 
@@ -357,80 +469,43 @@ std::unique_ptr<FrameSource> open_gsd(MappedFile file) {
 }
 
 void write_gsd(const std::string& path, const Snapshot& s) {
-  const std::size_t n = s.size();
-  GS_CHECK(s.info.dim >= 2 && s.radius.size() == n && s.active.size() == n);
   Writer w;
-  if (s.info.step)
-    w.chunk("configuration/step", U64, 1, 1,
-            std::vector<std::uint64_t>{static_cast<std::uint64_t>(*s.info.step)});
-  w.chunk("configuration/dimensions", U8, 1, 1,
-          std::vector<std::uint8_t>{static_cast<std::uint8_t>(s.info.dim)});
-  std::vector<float> box = {1, 1, 0, 0, 0, 0};
-  for (int a = 0; a < 3; ++a) box[a] = static_cast<float>(s.info.box[a]);
-  w.chunk("configuration/box", F32, 6, 1, box);
-  w.chunk("particles/N", U32, 1, 1, std::vector<std::uint32_t>{static_cast<std::uint32_t>(n)});
-  // HOOMD keeps positions in the box centred on the origin and counts the wraps in image.
-  std::vector<float> pos(3 * n), vel(s.has_velocity() ? 3 * n : 0), diameter(n);
-  std::vector<std::int32_t> image(3 * n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int a = 0; a < 3; ++a) {
-      double x = s.position[i][a];
-      const double edge = s.info.box[a];
-      if (edge > 0) {
-        const double u = x - s.info.origin[a];
-        const double wraps = std::floor(u / edge);
-        image[3 * i + a] = static_cast<std::int32_t>(wraps);
-        x = u - wraps * edge - edge / 2;
-      }
-      pos[3 * i + a] = static_cast<float>(x);
-      if (!vel.empty()) vel[3 * i + a] = static_cast<float>(s.velocity[i][a]);
-    }
-    diameter[i] = static_cast<float>(2 * s.radius[i]);
-  }
-  // Chunks equal to the schema's defaults (image 0, diameter 1) are left out, as HOOMD does: a
-  // 2e6-sphere snapshot is 28 MB smaller.
-  w.chunk("particles/position", F32, n, 3, pos);
-  if (std::any_of(image.begin(), image.end(), [](std::int32_t i) { return i != 0; }))
-    w.chunk("particles/image", I32, n, 3, image);
-  if (!vel.empty()) w.chunk("particles/velocity", F32, n, 3, vel);
-  if (std::any_of(diameter.begin(), diameter.end(), [](float d) { return d != 1; }))
-    w.chunk("particles/diameter", F32, n, 1, diameter);
-  w.chunk("log/particles/active", U8, n, 1, s.active);
-  if (!s.first_collision.empty())
-    w.chunk("log/particles/first_collision", F64, n, 1, s.first_collision);
-  w.chunk("log/grainshock/time", F64, 1, 1, std::vector<double>{s.info.time});
+  w.add_frame(s, false);
+  w.written = w.data.size();
+  const auto [head, tail] = w.header_and_tail();
+  write_file_atomic(path, {head, w.data, tail});
+}
 
-  // Header, data, index, then the names (0-terminated, an empty name last, in 64-byte slots).
-  std::string names;
-  for (const auto& nm : w.names) names.append(nm).push_back('\0');
-  names.push_back('\0');
-  names.resize((names.size() + kNameSegment - 1) / kNameSegment * kNameSegment, '\0');
-  const std::uint64_t index_location = kHeaderSize + w.data.size();
-  const std::uint64_t names_location = index_location + w.index.size() * kEntrySize;
-  std::string out(kHeaderSize, '\0');
-  auto put = [&](std::size_t at, auto v) { std::memcpy(out.data() + at, &v, sizeof v); };
-  put(0, kMagic);
-  put(8, index_location);
-  put(16, static_cast<std::uint64_t>(w.index.size()));
-  put(24, names_location);
-  put(32, static_cast<std::uint64_t>(names.size() / kNameSegment));
-  put(40, std::uint32_t{(1u << 16) | 4u});  // hoomd schema 1.4
-  put(44, std::uint32_t{2u << 16});         // file layer 2.0
-  std::memcpy(out.data() + 48, "grainshock", 10);
-  std::memcpy(out.data() + 112, "hoomd", 5);
-  out += w.data;
-  for (const Entry& e : w.index) {
-    char rec[kEntrySize] = {};
-    std::memcpy(rec, &e.frame, 8);
-    std::memcpy(rec + 8, &e.n, 8);
-    std::memcpy(rec + 16, &e.location, 8);
-    std::memcpy(rec + 24, &e.m, 4);
-    std::memcpy(rec + 28, &e.id, 2);
-    std::memcpy(rec + 30, &e.type, 1);
-    out.append(rec, kEntrySize);
+namespace {
+
+class GsdTrajectory final : public TrajectoryWriter {
+ public:
+  explicit GsdTrajectory(const std::string& path) {
+    file_.open(path);
+    file_.write(std::string(kHeaderSize, '\0'));  // the header goes in last
   }
-  out += names;
-  write_file_atomic(path, out);
+  void add(const Snapshot& s) override {
+    if (s.info.dim < 2) throw UserError("GSD holds 2D and 3D systems only; use .xyz in 1D");
+    w_.add_frame(s, true);
+    file_.write(w_.data);
+    w_.written += w_.data.size();
+    w_.data.clear();
+  }
+  void finish() override {
+    const auto [head, tail] = w_.header_and_tail();
+    file_.write(tail);
+    file_.finish(head);
+  }
+
+ private:
+  Writer w_;
+  AtomicFileWriter file_;
+};
+
+}  // namespace
+
+std::unique_ptr<TrajectoryWriter> open_gsd_trajectory(const std::string& path) {
+  return std::make_unique<GsdTrajectory>(path);
 }
 
 }  // namespace gs

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "io/snapshot_file.h"
+#include "io/trajectory.h"
 
 namespace gs {
 
@@ -22,9 +23,16 @@ std::unique_ptr<FrameSource> open_gsd(MappedFile file);
 
 // One frame in the hoomd schema (positions, velocities and diameters as 32-bit floats, as the
 // schema has them, so this is a picture of the state rather than an exact record), plus
-// log/particles/active, log/particles/first_collision and log/grainshock/time. Positions are
+// log/particles/active, log/particles/first_collision, configuration/step (the snapshot's step:
+// collisions so far for ours) and log/Time (OVITO's global attribute Time; earlier versions
+// wrote log/grainshock/time, which is still read). Positions are
 // wrapped into the box centred on the origin with the image counts beside them, as HOOMD wants;
 // image and diameter are left out when all are the schema's defaults (0 and 1).
 void write_gsd(const std::string& path, const Snapshot& s);
+
+// Several frames in one file, as HOOMD writes a trajectory (OVITO and gsd.hoomd open it as one
+// sequence): each frame as write_gsd writes one, but with every chunk, since readers take a
+// chunk a frame lacks from frame 0. 1D frames are refused (UserError).
+std::unique_ptr<TrajectoryWriter> open_gsd_trajectory(const std::string& path);
 
 }  // namespace gs

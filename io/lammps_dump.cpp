@@ -33,7 +33,7 @@ class DumpSource final : public FrameSource {
  public:
   explicit DumpSource(MappedFile f);
   std::size_t frames() const override { return frames_.size(); }
-  Snapshot read(std::size_t k) const override;
+  Snapshot read(std::size_t k, const ReadOptions& options) const override;
   const char* format() const override { return "LAMMPS dump"; }
 
  private:
@@ -159,12 +159,13 @@ DumpSource::DumpSource(MappedFile f) : file_(std::move(f)) {
   if (frames_.empty()) throw UserError("snapshot '" + file_.path() + "' is empty");
 }
 
-Snapshot DumpSource::read(std::size_t k) const {
+Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
   const DumpFrame& f = frames_[k];
   Snapshot s;
   s.info.dim = 0;  // a dump does not say; z = 0 throughout makes it 2D
   s.info.step = f.step;
   if (f.time) s.info.time = *f.time;
+  s.info.has_time = f.time.has_value();
   s.info.origin = f.lo;
   s.info.box = f.hi - f.lo;
 
@@ -181,14 +182,17 @@ Snapshot DumpSource::read(std::size_t k) const {
     fail(f.atoms_line, std::to_string(ntok) + " columns are more than the " + std::to_string(n) +
                            " lines of the frame hold");
   static constexpr const char* axes = "xyz";
-  // Preference: xu, xsu, x, xs (each for x, y, z).
+  // Forms 0-3: xu, xsu, x, xs (each for x, y, z). Unwrapped: that order, image flags added to
+  // the wrapped ones. In the cell (OVITO's default): x, xs, then xu, xsu folded into the cell.
   static constexpr const char* forms[4] = {"u", "su", "", "s"};
+  static constexpr int unwrapped_order[4] = {0, 1, 2, 3}, cell_order[4] = {2, 3, 0, 1};
+  const int* order = options.unwrap ? unwrapped_order : cell_order;
   int chosen[3] = {-1, -1, -1}, form_of[3] = {-1, -1, -1}, image[3] = {-1, -1, -1};
   for (int a = 0; a < 3; ++a) {
-    for (int fm = 0; fm < 4 && chosen[a] < 0; ++fm)
+    for (int o = 0; o < 4 && chosen[a] < 0; ++o)
       for (std::size_t t = 0; t < ntok; ++t)
-        if (names[t] == std::string(1, axes[a]) + forms[fm]) {
-          chosen[a] = static_cast<int>(t), form_of[a] = fm;
+        if (names[t] == std::string(1, axes[a]) + forms[order[o]]) {
+          chosen[a] = static_cast<int>(t), form_of[a] = order[o];
           break;
         }
     for (std::size_t t = 0; t < ntok; ++t)
@@ -212,7 +216,7 @@ Snapshot DumpSource::read(std::size_t k) const {
       if (chosen[a] == static_cast<int>(t)) {
         sl = {form_of[a] == 1 || form_of[a] == 3 ? Slot::Scaled : Slot::Pos, a, 0};
         used = true;
-      } else if (image[a] == static_cast<int>(t) && form_of[a] >= 2) {
+      } else if (image[a] == static_cast<int>(t) && form_of[a] >= 2 && options.unwrap) {
         sl = {Slot::Image, a, 0};
         used = true;
       } else if (nm == std::string("v") + axes[a]) {
@@ -246,6 +250,13 @@ Snapshot DumpSource::read(std::size_t k) const {
   std::vector<Eigen::Vector3d> img(has_image ? n : 0, Eigen::Vector3d::Zero());
   bool scaled[3] = {form_of[0] % 2 == 1, form_of[1] % 2 == 1, form_of[2] % 2 == 1};
   const Eigen::Vector3d edge = f.hi - f.lo;
+  // In the cell: unwrapped columns are folded into it (image flags are then only columns).
+  bool fold[3] = {};
+  for (int a = 0; a < 3; ++a) fold[a] = !options.unwrap && chosen[a] >= 0 && form_of[a] < 2 && edge[a] > 0;
+  if (!options.unwrap && (fold[0] || fold[1] || fold[2] || image[0] >= 0 || image[1] >= 0 ||
+                          image[2] >= 0))
+    s.notes.push_back("positions in the cell, as OVITO draws them (--unwrap uses xu or the image "
+                      "flags)");
   const std::string_view b = file_.bytes();
   scan_rows(
       b.substr(f.body, f.end - f.body), n, ntok, f.atoms_line + 1, file_.path(),
@@ -288,6 +299,7 @@ Snapshot DumpSource::read(std::size_t k) const {
           double& x = s.position[i][a];
           if (scaled[a]) x = f.lo[a] + x * edge[a];
           if (form_of[a] >= 2 && has_image) x += img[i][a] * edge[a];
+          if (fold[a]) x -= edge[a] * std::floor((x - f.lo[a]) / edge[a]);
         }
       },
       true);

@@ -1,18 +1,22 @@
 #include "io/snapshot_file.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/gsd.h"
 #include "io/lammps_dump.h"
 #include "io/text_scan.h"
 #include "io/xyz.h"
 #include "sim/error.h"
+#include "sim/format.h"
 
 namespace gs {
 
 SnapshotFile::SnapshotFile(std::unique_ptr<FrameSource> source, std::string path, ReadOptions o)
     : source_(std::move(source)), path_(std::move(path)), options_(o) {
   if (options_.dim < 0 || options_.dim > 3) throw UserError("--dim must be 1, 2 or 3");
+  if (!(options_.dt >= 0) || !std::isfinite(options_.dt))
+    throw UserError("--dt must be a positive time step");
 }
 
 Snapshot SnapshotFile::read(std::size_t k) const {
@@ -21,7 +25,7 @@ Snapshot SnapshotFile::read(std::size_t k) const {
     throw UserError("snapshot '" + path_ + "' has " + std::to_string(n) +
                     (n == 1 ? " frame" : " frames") + "; frame " + std::to_string(k) +
                     " is out of range (frames count from 0)");
-  Snapshot s = source_->read(k);
+  Snapshot s = source_->read(k, options_);
   finish_snapshot(s, options_, "snapshot '" + path_ + "' frame " + std::to_string(k));
   return s;
 }
@@ -55,6 +59,16 @@ void finish_snapshot(Snapshot& s, const ReadOptions& options, const std::string&
     s.info.origin[k] = 0;
     for (auto& p : s.position) p[k] = 0;
     for (auto& v : s.velocity) v[k] = 0;
+  }
+  if (!s.info.has_time && s.info.step && options.dt > 0) {
+    s.info.time = static_cast<double>(*s.info.step) * options.dt;
+    s.info.has_time = true;
+    s.notes.push_back("the file gives steps, no time: time = step x " + format_number(options.dt) +
+                      " (--dt)");
+  } else if (!s.info.has_time) {
+    s.notes.push_back(s.info.step ? "the file gives steps, no time: frames are labelled by their "
+                                    "step (--dt DT turns steps into time)"
+                                  : "the file gives no time and no step: frames have no time label");
   }
   if (s.radius.empty()) s.radius.assign(n, 0.5);
   if (s.active.empty()) s.active.assign(n, 1);  // a file without the column shows every particle

@@ -23,6 +23,14 @@ namespace gs {
 
 struct ReadOptions {
   int dim = 0;  // 1, 2 or 3 overrides what the file says or suggests; 0 infers
+  // > 0: frames that give a step but no time (LAMMPS dumps without ITEM: TIME, HOOMD GSD) get
+  // time = step x dt; frames that give a time keep it.
+  double dt = 0;
+  // LAMMPS dumps and others' GSD files: false draws what OVITO draws, the positions in the cell
+  // (x or xs as written, xu folded into the cell, image flags kept as columns ix iy iz or
+  // image_x ...); true unwraps them (xu, or x plus image flags times the box). Our own files
+  // hold unwrapped positions (a band across the boundary in one piece) and keep them either way.
+  bool unwrap = false;
 };
 
 // A file format's view of a file: its frames, each read on demand.
@@ -31,7 +39,7 @@ class FrameSource {
   virtual ~FrameSource() = default;
   virtual std::size_t frames() const = 0;
   // Frame k < frames(). info.dim is what the file states, or 0 when it states nothing.
-  virtual Snapshot read(std::size_t k) const = 0;
+  virtual Snapshot read(std::size_t k, const ReadOptions& options) const = 0;
   virtual const char* format() const = 0;  // "extended XYZ", "LAMMPS dump", "GSD"
 };
 

@@ -1,14 +1,18 @@
 #include "io/xyz.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <thread>
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/atomic_masses.h"
 #include "io/text_scan.h"
 #include "sim/error.h"
+#include "sim/format.h"
 
 namespace gs {
 namespace {
@@ -22,7 +26,7 @@ struct FrameSpan {
 
 // Where each token of a particle line goes.
 struct Slot {
-  enum Kind : std::uint8_t { Skip, Pos, Vel, Momentum, Mass, Radius, Active, First, Extra };
+  enum Kind : std::uint8_t { Skip, Pos, Vel, Momentum, Mass, Radius, Active, First, Extra, Species };
   Kind kind = Skip;
   char type = 'R';
   std::uint32_t index = 0;  // component, or the extra column
@@ -33,6 +37,8 @@ struct Layout {
   std::vector<Slot> slots;
   std::vector<std::string> extra;  // names of the extra columns, in slot order
   int pos_count = 0;
+  int z_column = -1;  // the extra column holding ASE's atomic numbers Z, if any
+  bool has_species = false;
   bool has_vel = false, has_mom = false, has_mass = false, has_radius = false, has_active = false,
        has_first = false;
   bool velocity() const { return has_vel || has_mom; }
@@ -52,7 +58,7 @@ class XyzSource final : public FrameSource {
  public:
   explicit XyzSource(MappedFile f);
   std::size_t frames() const override { return frames_.size(); }
-  Snapshot read(std::size_t k) const override;
+  Snapshot read(std::size_t k, const ReadOptions& options) const override;
   const char* format() const override { return "extended XYZ"; }
 
  private:
@@ -108,6 +114,7 @@ XyzSource::XyzSource(MappedFile f) : file_(std::move(f)) {
 // with spaces inside, and '=' may have spaces around it (ASE accepts both). Bare keys are flags.
 Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
   Header h;
+  bool time_given = false;
   std::size_t i = 0;
   auto skip_space = [&] {
     while (i < s.size() && is_space(s[i])) ++i;
@@ -177,6 +184,7 @@ Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
       std::copy(v, v + 3, h.pbc);
     } else if (iequals(key, "Time") || iequals(key, "t") || iequals(key, "sim_time")) {
       h.info.time = num("Time");
+      time_given = true;
     } else if (iequals(key, "Timestep") || iequals(key, "step")) {
       std::int64_t step = 0;
       if (!parse_integer(value, step)) fail(line, not_a(value, "an integer", "Timestep"));
@@ -199,6 +207,7 @@ Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
       h.info.seed = seed;
     }
   }
+  h.info.has_time = time_given;
   return h;
 }
 
@@ -276,9 +285,15 @@ Layout XyzSource::parse_properties(const std::string& properties, std::size_t li
       need(t == 'R' && count == 1, "R:1");
       l.has_first = true;
       add(Slot::First);
+    } else if (t == 'S' && count == 1 && !l.has_species &&
+               (iequals(name, "species") || iequals(name, "symbols"))) {
+      l.has_species = true;  // ASE's element symbols: the masses of momenta without masses
+      add(Slot::Species);
     } else if (t == 'S') {
-      add(Slot::Skip);  // species names, labels
+      add(Slot::Skip);  // labels
     } else {
+      if ((name == "Z" || name == "numbers") && (t == 'I' || t == 'R') && count == 1)
+        l.z_column = static_cast<int>(l.extra.size());
       for (std::uint32_t c = 0; c < count; ++c) {
         l.slots.push_back({Slot::Extra, t, static_cast<std::uint32_t>(l.extra.size())});
         l.extra.push_back(component_name(name, static_cast<int>(c), static_cast<int>(count)));
@@ -317,7 +332,59 @@ bool XyzSource::apply_lattice(const Header& h, SnapshotInfo& info, std::size_t l
   return zero_third;
 }
 
-Snapshot XyzSource::read(std::size_t k) const {
+// Divides the momenta by each particle's element mass (ASE's table, io/atomic_masses.h): from
+// the Z column when there is one (ASE's reader lets Z win over the species), else the species;
+// a name that is no element, X and a file with neither keep mass 1. The log's note lists them.
+void divide_by_element_masses(Snapshot& s, const std::vector<std::string_view>& species,
+                              const std::vector<double>* z) {
+  std::map<std::string, double, std::less<>> seen;  // name -> mass used (1 when none)
+  std::string_view last;
+  double last_mass = 1;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    double m = 1;
+    if (z) {
+      const double zi = (*z)[i];
+      const auto am = zi == std::floor(zi) ? atomic_mass(static_cast<long long>(zi)) : std::nullopt;
+      m = am.value_or(1.0);
+      if (seen.size() < 200)
+        seen.emplace(am ? "Z=" + format_number(zi) + " (" + std::string(element_symbol(
+                                                               static_cast<long long>(zi))) + ")"
+                        : "Z=" + format_number(zi),
+                     m);
+    } else if (!species.empty()) {
+      if (i > 0 && species[i] == last) {
+        m = last_mass;
+      } else {
+        const auto zs = atomic_number(species[i]);
+        m = zs ? atomic_mass(*zs).value_or(1.0) : 1.0;
+        last = species[i];
+        last_mass = m;
+        if (seen.size() < 200) seen.emplace(std::string(species[i]), m);
+      }
+    }
+    if (m != 1) s.velocity[i] /= m;
+  }
+  // Only X (ASE's dummy element, mass 1 there too, what we write): nothing was assumed.
+  if (!seen.empty() && std::all_of(seen.begin(), seen.end(), [](const auto& e) {
+        return e.first == "X" || e.first == "x" || e.first == "Z=0";
+      }))
+    return;
+  std::string with, without;
+  for (const auto& [name, m] : seen) {
+    if (m == 1)
+      without += (without.empty() ? "" : ", ") + name;
+    else
+      with += (with.empty() ? "" : ", ") + name + " " + format_number(m);
+  }
+  std::string note = "momenta without masses: ";
+  if (!with.empty()) note += "masses from the elements (ASE's table, IUPAC 2016): " + with;
+  if (!without.empty())
+    note += std::string(with.empty() ? "" : "; ") + "mass 1 for " + without + " (no element)";
+  if (seen.empty()) note += "mass 1 (no species or Z column)";
+  s.notes.push_back(std::move(note));
+}
+
+Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   const FrameSpan& f = frames_[k];
   const std::string_view b = file_.bytes();
   const std::size_t comment_line = f.count_line + 1;
@@ -354,6 +421,10 @@ Snapshot XyzSource::read(std::size_t k) const {
   if (l.has_first) s.first_collision.resize(n);
   std::vector<double> mass;
   if (l.has_mom && !l.has_vel && l.has_mass) mass.resize(n);
+  // Momenta without masses: ASE's rule, each mass from the element (Z if given, else species).
+  const bool element_masses = l.has_mom && !l.has_vel && !l.has_mass;
+  std::vector<std::string_view> species;
+  if (element_masses && l.has_species && l.z_column < 0) species.resize(n);
   for (auto& c : s.columns) c.values.resize(n);
   const int check_from = stated > 0 && stated < 3 ? stated : 3;
 
@@ -363,6 +434,9 @@ Snapshot XyzSource::read(std::size_t k) const {
         const Slot& sl = l.slots[t];
         switch (sl.kind) {
           case Slot::Skip:
+            break;
+          case Slot::Species:
+            if (!species.empty()) species[i] = tok;  // a view into the mapped file
             break;
           case Slot::Pos:
             s.position[i][sl.index] = real(tok, line_no, "pos");
@@ -422,6 +496,8 @@ Snapshot XyzSource::read(std::size_t k) const {
       true);
   if (!mass.empty())
     for (std::size_t i = 0; i < n; ++i) s.velocity[i] /= mass[i];
+  if (element_masses && n > 0)
+    divide_by_element_masses(s, species, l.z_column < 0 ? nullptr : &s.columns[l.z_column].values);
   return s;
 }
 
@@ -460,7 +536,10 @@ std::unique_ptr<FrameSource> open_xyz(MappedFile file) {
   return std::make_unique<XyzSource>(std::move(file));
 }
 
-void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
+namespace {
+
+// A frame's text in two pieces (its second half formatted on a second thread).
+std::pair<std::string, std::string> xyz_pieces(const Snapshot& s, XyzFlavour flavour) {
   const std::size_t n = s.size();
   const int dim = s.info.dim;
   GS_CHECK(dim >= 1 && dim <= 3);
@@ -505,8 +584,10 @@ void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
     head += ":" + name + ":R:1";
     extra.push_back(&c);
   }
-  head += " Time=";
-  append_number(head, s.info.time);
+  if (s.info.has_time) {
+    head += " Time=";
+    append_number(head, s.info.time);
+  }
   head += dim == 3 ? " pbc=\"T T T\"" : dim == 2 ? " pbc=\"T T F\"" : " pbc=\"T F F\"";
   head += " Dim=" + std::to_string(dim);
   auto opt = [&](const char* key, const std::optional<double>& v) {
@@ -547,7 +628,40 @@ void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
   }
   if (helper.joinable()) helper.join();
   if (failed) std::rethrow_exception(failed);
-  write_file_atomic(path, {out, second});
+  return {std::move(out), std::move(second)};
+}
+
+}  // namespace
+
+void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour) {
+  const auto [first, second] = xyz_pieces(s, flavour);
+  write_file_atomic(path, {first, second});
+}
+
+namespace {
+
+class XyzTrajectory final : public TrajectoryWriter {
+ public:
+  XyzTrajectory(const std::string& path, XyzFlavour flavour) : flavour_(flavour) {
+    file_.open(path);
+  }
+  void add(const Snapshot& s) override {
+    const auto [first, second] = xyz_pieces(s, flavour_);
+    file_.write(first);
+    file_.write(second);
+  }
+  void finish() override { file_.finish(); }
+
+ private:
+  XyzFlavour flavour_;
+  AtomicFileWriter file_;
+};
+
+}  // namespace
+
+std::unique_ptr<TrajectoryWriter> open_xyz_trajectory(const std::string& path,
+                                                      XyzFlavour flavour) {
+  return std::make_unique<XyzTrajectory>(path, flavour);
 }
 
 }  // namespace gs

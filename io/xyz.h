@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/snapshot_file.h"
+#include "io/trajectory.h"
 
 namespace gs {
 
@@ -28,5 +29,9 @@ enum class XyzFlavour { Ase, Ovito };
 // (edges beyond the dimension 1, pbc F there), Origin when not 0, radius, active,
 // first_collision and every extra column.
 void write_xyz(const std::string& path, const Snapshot& s, XyzFlavour flavour = XyzFlavour::Ase);
+// Frames as write_xyz writes them, one after the other in one file (ASE's read(f, ':') and
+// OVITO open them as one sequence).
+std::unique_ptr<TrajectoryWriter> open_xyz_trajectory(const std::string& path,
+                                                      XyzFlavour flavour = XyzFlavour::Ase);
 
 }  // namespace gs

@@ -15,7 +15,10 @@ enum class FiguresMode { Tiny, Quick, Full };
 // Paper: one (d, r) of the paper's figures (and the added r of the phi1 fit). DeltaScan: the
 // scan of the cutoff delta (2D, r = 0.1) that measures t_c2 ~ delta^-phi2, only in fig7 and the
 // phi2 comparison. Elastic3D: the 3D elastic blast run big and long enough for its plateau.
-enum class CaseRole { Paper, DeltaScan, Elastic3D };
+// Long3D (opt-in, `figures --long`): 3D r = 0.1 and 0.5 to t = 1e6, to show whether 3D alpha =
+// 1/4 is reached on a plateau that passes the drift rule; their exponents are compared, their
+// t_c1 stay out of phi1 (the paper cases of the same r give it).
+enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D };
 
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
@@ -34,7 +37,8 @@ struct FiguresPlan {
 };
 
 const char* to_string(FiguresMode m);
-FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed);
+// long_3d: add the Long3D cases to the mode's plan.
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false);
 
 // The case of dimension d and restitution r, or nullptr.
 const FigureCase* find_case(const FiguresPlan& plan, int d, double r);

@@ -124,8 +124,8 @@ std::string fig2(const std::vector<CaseResult>& all, const Out& out) {
   std::string gp = gnuplot_preamble("fig2_anisotropy", 900, 650);
   gp +=
       "set title 'Fig. 2: anisotropy index A(t) in 2D (mean over realisations)'\n"
-      "set logscale x\nset xlabel 't (paper units 1/(v_0 n^{1/d}))'\nset ylabel 'A(t)'\n"
-      "set yrange [0:1]\nset key top right\n" +
+      "set logscale xy\nset xlabel 't (paper units 1/(v_0 n^{1/d}))'\nset ylabel 'A(t)'\n"
+      "set yrange [*:1]\nset format y '10^{%L}'\nset key bottom left\n" +
       plot + "\n";
   return out.plot("fig2_anisotropy.gp", gp);
 }
@@ -154,7 +154,9 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
       }
       const std::string sel = "($1==" + std::to_string(d) + " && $2==" + rtext(r) + " ? $4 : 1/0)";
       // Colour by r, open points in 2D and filled ones in 3D.
-      const std::string title = " lc " + std::to_string(colour) + " pt " + (d == 2 ? "6" : "7") +
+      // 3D takes colours 4-6, so that no 2D and 3D curve share one.
+      const std::string title = " lc " + std::to_string(colour + (d == 3 ? 3 : 0)) + " pt " +
+                                (d == 2 ? "6" : "7") +
                                 " title 'd = " + std::to_string(d) + ", r = " + rtext(r) + "'";
       plot_n += std::string(plot_n.empty() ? "plot " : ", \\\n     ") +
                 "'fig3_active_energy.csv' skip 1 using " + sel + ":5" + title;

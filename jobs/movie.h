@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/snapshot_file.h"
 #include "jobs/progress.h"
 #include "render/movie_writer.h"
 #include "sim/config.h"
@@ -39,6 +40,7 @@ struct FrontMovieOptions {
   std::string backend = "auto";
   bool quiet = false;
   ProgressFactory progress;  // the line of each pass; none by default
+  ReadOptions read;          // stored snapshots: --dt, --unwrap (--dim is the simulation's flag)
 };
 
 // Throws UserError naming the flag if these options cannot make a movie of this run. Touches

@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/output_dir.h"
 #include "io/snapshot_file.h"
+#include "io/trajectory.h"
 #include "jobs/movie.h"
 #include "jobs/progress.h"
 #include "render/field.h"
@@ -39,10 +40,6 @@ constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary
 
 // The stages of a job after sampling, kept in checkpoints: a resume redoes the unfinished one.
 enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1 };
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string times_toml(const std::vector<double>& times) {
   std::string s = "[";
@@ -188,6 +185,16 @@ bool write_elastic_comparison(const fs::path& dir, const RunOptions& o) {
   return true;
 }
 
+// Every snapshot time in one file, read back from the snapshot files (so that a resumed run
+// writes the same trajectory).
+void write_trajectory(const fs::path& dir, const RunOptions& o) {
+  const auto out = open_trajectory((dir / o.trajectory).string(), trajectory_format(o.trajectory));
+  for (double t : snapshot_times(o.plan))
+    out->add(
+        read_snapshot((dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format)).string()));
+  out->finish();
+}
+
 bool finished_run(const fs::path& dir) {
   std::ifstream f(dir / "summary.json");
   std::stringstream text;
@@ -219,12 +226,15 @@ std::string run_toml(const RunOptions& o) {
     << "movie = " << (o.movie ? "true" : "false") << "\n"
     << "movie-inset = " << (o.movie_inset ? "true" : "false") << "\n"
     << "width = " << o.width << "\n"
-    << "height = " << o.height << "\n";
+    << "height = " << o.height << "\n"
+    << "trajectory = \"" << o.trajectory << "\"\n";
   return t.str();
 }
 
 RunResult run_job(const RunOptions& o, bool resume) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
+  if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
+    throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;
@@ -263,7 +273,9 @@ RunResult run_job(const RunOptions& o, bool resume) {
     if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
       fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
   } else {
-    dir = prepare_output_dir(o.out, o.force, kRunOutputs);
+    std::vector<const char*> replaced(std::begin(kRunOutputs), std::end(kRunOutputs));
+    if (!o.trajectory.empty()) replaced.push_back(o.trajectory.c_str());
+    dir = prepare_output_dir(o.out, o.force, replaced);
     lock_output_dir(dir);
     remove_leftovers(dir);
     write_file_atomic(dir / "run.toml", spec);
@@ -298,6 +310,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
     }
   }
   const auto t2 = std::chrono::steady_clock::now();
+  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
   if (!stopped && o.png) stopped = !write_pictures(dir, o);
   if (!stopped && o.compare_elastic) stopped = !write_elastic_comparison(dir, o);
   if (!stopped && o.movie) {

@@ -18,6 +18,9 @@ struct RunOptions {
   bool movie = false;            // movie.mp4 of the front, as `grainshock movie` makes it
   bool movie_inset = false;      // with the profile inset (the Fig. 1 job's movie has it)
   int width = 1920, height = 1080;
+  // A file in the run folder (name.gsd or name.xyz) holding every snapshot time as one
+  // trajectory; empty: none.
+  std::string trajectory;
   // Neither of these shapes the results.
   std::string out = "grainshock-run";
   bool force = false, quiet = false;

@@ -11,7 +11,7 @@
 #include "sim/format.h"
 #include "sim/stop.h"
 
-namespace gs {
+namespace gs::jobs {
 namespace {
 
 double wall_now() {
@@ -223,4 +223,4 @@ void RunLoop::record() {
   if (on_sample) on_sample(s);
 }
 
-}  // namespace gs
+}  // namespace gs::jobs

@@ -18,7 +18,7 @@
 #include "sim/engine.h"
 #include "sim/recorder.h"
 
-namespace gs {
+namespace gs::jobs {
 
 // Everything beside the physics that shapes what the loop writes.
 struct RunPlan {
@@ -114,4 +114,4 @@ class RunLoop {
   std::future<void> committing_;
 };
 
-}  // namespace gs
+}  // namespace gs::jobs

@@ -19,7 +19,7 @@ Annotations annotate(Image& img, const Scene& sc, OverlayPainter& painter) {
       a.colorbar = painter.colorbar(img, cmap, sc.range, st.scale, sc.bar_label, sc.bar_note, oc);
       a.panels.push_back({a.colorbar.panel_x0, 0, img.width, img.height});
     }
-    if (st.time_label) a.panels.push_back(painter.top_left_label(img, sc.time_text, oc));
+    if (st.time_label && !sc.time_text.empty()) a.panels.push_back(painter.top_left_label(img, sc.time_text, oc));
     if (sc.inset) {
       a.inset = painter.inset(img, *sc.inset, cmap, sc.range, st.scale, oc);
       a.panels.push_back(a.inset);

@@ -6,9 +6,8 @@
 
 namespace gs::render {
 
-bool Camera::visible(const Eigen::Vector3d& p, double r) const {
+bool Camera::visible_3d(const Eigen::Vector3d& p, double r) const {
   const Eigen::Vector3d d = p - origin;
-  if (!perspective) return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
   const double cut = (p - cut_origin).dot(forward);
   if (slab > 0 && std::abs(cut) > slab / 2) return false;
   if (clip && cut < 0) return false;

@@ -2,6 +2,8 @@
 // Where the picture looks. 2D: an orthographic window; 3D: a perspective orbit camera around a
 // target. Positions are made relative to `origin` in double before they become floats, so
 // unwrapped coordinates far from 0 keep their precision on the GPU.
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -27,7 +29,13 @@ struct Camera {
 
   double pixels_per_unit() const { return width / (2 * half_w); }
   // False if a disc or sphere of radius r at world point p cannot show in the picture.
-  bool visible(const Eigen::Vector3d& p, double r) const;
+  bool visible(const Eigen::Vector3d& p, double r) const {
+    if (perspective) return visible_3d(p, r);
+    // Inline: a 2D frame asks this of every particle.
+    const Eigen::Vector3d d = p - origin;
+    return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
+  }
+  bool visible_3d(const Eigen::Vector3d& p, double r) const;
 };
 
 // `fit` is the box to frame (fitted particles or the periodic box), r_max the largest radius.

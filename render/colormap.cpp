@@ -84,8 +84,13 @@ Colormap Colormap::against(Rgb8 background) const {
 Rgb8 Colormap::at8(double t) const {
   const auto c = at(t);
   Rgb8 out;
-  for (int k = 0; k < 3; ++k)
-    out[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+  // lround's rounding (half away from zero) without its call, which a scene of 2.5e5 particles
+  // made once a channel: x - floor(x) is exact for 0 <= x <= 255.
+  for (int k = 0; k < 3; ++k) {
+    const float x = std::clamp(c[k], 0.0f, 1.0f) * 255.0f;
+    const int i = static_cast<int>(x);
+    out[k] = static_cast<std::uint8_t>(x - static_cast<float>(i) >= 0.5f ? i + 1 : i);
+  }
   return out;
 }
 

@@ -6,16 +6,12 @@
 #include <cstdlib>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "sim/error.h"
 
 namespace gs::render {
 namespace {
-
-bool differs(const std::uint8_t* a, const std::uint8_t* b, int tolerance) {
-  for (int k = 0; k < 3; ++k)
-    if (std::abs(int(a[k]) - int(b[k])) > tolerance) return true;
-  return false;
-}
 
 std::vector<float> luma(const Image& img) {
   std::vector<float> y(static_cast<std::size_t>(img.width) * img.height);
@@ -90,13 +86,95 @@ double ssim(const Image& a, const Image& b) {
   return sum / (double(ow) * (h - K + 1));
 }
 
+namespace {
+
+int chebyshev(const std::uint8_t* a, const std::uint8_t* b) {
+  return std::max({std::abs(int(a[0]) - int(b[0])), std::abs(int(a[1]) - int(b[1])),
+                   std::abs(int(a[2]) - int(b[2]))});
+}
+
+// Largest channel difference between x and the point of the convex hull of v[0..n) nearest to
+// x (in RGB, Euclidean): how far x is from every blend of those colours. The nearest point is
+// the projection on the affine hull of one of the subsets of v (a vertex, an edge, a face or
+// the whole tetrahedron) that lands inside it; every subset is tried, 15 for n = 4.
+float off_hull(const std::uint8_t* x, const std::array<float, 3>* v, int n) {
+  float best = 1e9f;
+  for (unsigned mask = 1; mask < (1u << n); ++mask) {
+    int idx[4], k = 0;
+    for (int i = 0; i < n; ++i)
+      if (mask & (1u << i)) idx[k++] = i;
+    const std::array<float, 3>& o = v[idx[0]];
+    Eigen::Vector3f r(float(x[0]) - o[0], float(x[1]) - o[1], float(x[2]) - o[2]);
+    Eigen::Matrix<float, 3, Eigen::Dynamic> e(3, k - 1);
+    for (int j = 1; j < k; ++j)
+      for (int c = 0; c < 3; ++c) e(c, j - 1) = v[idx[j]][c] - o[c];
+    Eigen::Vector3f residual = r;
+    if (k > 1) {
+      const Eigen::MatrixXf g = e.transpose() * e;
+      Eigen::LDLT<Eigen::MatrixXf> ldlt(g);
+      if (ldlt.info() != Eigen::Success || std::abs(g.determinant()) < 1e-3f) continue;
+      const Eigen::VectorXf lambda = ldlt.solve(e.transpose() * r);
+      if ((lambda.array() < -1e-6f).any() || lambda.sum() > 1 + 1e-6f) continue;
+      residual = r - e * lambda;
+    }
+    best = std::min(best, residual.cwiseAbs().maxCoeff());
+  }
+  return best;
+}
+
+
+// How far pixel (x, y) of `from` lies from every blend of the same pixel of `to` with its
+// neighbours in one quadrant (the pixel, one beside, one above or below, one diagonal): what
+// a shift of less than a pixel in that quadrant's direction mixes, rims of several discs
+// included. Stops at the first quadrant within `tolerance`.
+float unexplained(const Image& from, const Image& to, int x, int y, int tolerance) {
+  const std::uint8_t* p = from.pixel(x, y);
+  float best = float(chebyshev(p, to.pixel(x, y)));
+  for (int sy = -1; sy <= 1 && best > tolerance; sy += 2)
+    for (int sx = -1; sx <= 1 && best > tolerance; sx += 2) {
+      std::array<float, 3> v[4];
+      int n = 0;
+      for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+          const int qx = x + sx * dx, qy = y + sy * dy;
+          if (qx < 0 || qy < 0 || qx >= to.width || qy >= to.height) continue;
+          const std::uint8_t* q = to.pixel(qx, qy);
+          for (int k = 0; k < 3; ++k) v[n][k] = float(q[k]);
+          ++n;
+        }
+      best = std::min(best, off_hull(p, v, n));
+    }
+  return best;
+}
+
+// Per pixel, 0 where each picture is explained by the other within the tolerance, else the
+// larger of the two unexplained amounts (at least 1).
+std::vector<std::uint8_t> excess_map(const Image& e, const Image& a, int tolerance) {
+  std::vector<std::uint8_t> m(static_cast<std::size_t>(a.width) * a.height, 0);
+  // The outermost rows and columns are left out: what a shift brings in there comes from
+  // outside the picture, which neither side has.
+  for (int y = 1; y + 1 < a.height; ++y)
+    for (int x = 1; x + 1 < a.width; ++x) {
+      if (chebyshev(a.pixel(x, y), e.pixel(x, y)) <= tolerance) continue;
+      const float u = std::max(unexplained(a, e, x, y, tolerance),
+                               unexplained(e, a, x, y, tolerance));
+      if (u > tolerance)
+        m[static_cast<std::size_t>(y) * a.width + x] =
+            static_cast<std::uint8_t>(std::clamp(std::lround(u), 1L, 255L));
+    }
+  return m;
+}
+
+}  // namespace
+
 ImageComparison compare_images(const Image& expected, const Image& actual,
                                const CompareOptions& o) {
   ImageComparison c;
   c.same_size = expected.width == actual.width && expected.height == actual.height;
   if (!c.same_size) return c;
   c.pixels = long(actual.width) * actual.height;
-  c.allowed = static_cast<long>(o.max_differing_fraction * double(c.pixels));
+  c.max_pixels = o.max_blob_pixels;
+  c.max_mass = o.max_blob_mass;
   double sq = 0;
   for (long i = 0; i < c.pixels; ++i) {
     const std::uint8_t* a = &actual.rgba[4 * i];
@@ -106,26 +184,67 @@ ImageComparison compare_images(const Image& expected, const Image& actual,
       c.max_channel_difference = std::max(c.max_channel_difference, d);
       sq += double(d) * d;
     }
-    c.differing += differs(a, e, o.channel_tolerance);
   }
   c.mse = c.pixels ? sq / (3.0 * double(c.pixels)) : 0;
   c.psnr = psnr_of_mse(c.mse);
   c.ssim = ssim(expected, actual);
+  if (c.max_channel_difference <= o.channel_tolerance) return c;
+
+  // Blobs: 8-connected groups of differing pixels, by a flood fill with an explicit stack.
+  std::vector<std::uint8_t> m = excess_map(expected, actual, o.channel_tolerance);
+  const int w = actual.width, h = actual.height;
+  std::vector<long> stack;
+  std::vector<int> mass_of(m.size(), 0);
+  for (long start = 0; start < c.pixels; ++start) {
+    if (!m[start]) continue;
+    Blob b;
+    b.x0 = b.x1 = int(start % w);
+    b.y0 = b.y1 = int(start / w);
+    stack.assign(1, start);
+    b.peak = m[start];
+    mass_of[start] = m[start] - o.channel_tolerance;
+    m[start] = 0;
+    while (!stack.empty()) {
+      const long i = stack.back();
+      stack.pop_back();
+      ++b.pixels;
+      b.mass += mass_of[i];
+      const int x = int(i % w), y = int(i / w);
+      b.x0 = std::min(b.x0, x), b.x1 = std::max(b.x1, x);
+      b.y0 = std::min(b.y0, y), b.y1 = std::max(b.y1, y);
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          const long q = long(qy) * w + qx;
+          if (!m[q]) continue;
+          b.peak = std::max(b.peak, int(m[q]));
+          mass_of[q] = m[q] - o.channel_tolerance;
+          m[q] = 0;
+          stack.push_back(q);
+        }
+    }
+    c.differing += b.pixels;
+    ++c.blobs;
+    if (c.blobs == 1 || c.excess_of(b) > c.excess_of(c.largest)) c.largest = b;
+  }
   return c;
 }
 
-Image diff_image(const Image& expected, const Image& actual, int channel_tolerance) {
+Image diff_image(const Image& expected, const Image& actual, const CompareOptions& o) {
   Image d(actual.width, actual.height);
+  const bool same_size = expected.width == actual.width && expected.height == actual.height;
+  const std::vector<std::uint8_t> m =
+      same_size ? excess_map(expected, actual, o.channel_tolerance) : std::vector<std::uint8_t>{};
   for (int y = 0; y < actual.height; ++y)
     for (int x = 0; x < actual.width; ++x) {
       const std::uint8_t* a = actual.pixel(x, y);
-      const bool bad = x >= expected.width || y >= expected.height ||
-                       differs(a, expected.pixel(x, y), channel_tolerance);
+      const bool bad = !same_size || m[static_cast<std::size_t>(y) * actual.width + x] != 0;
       const auto faded = static_cast<std::uint8_t>(192 + (a[0] + a[1] + a[2]) / 12);
-      std::uint8_t* o = d.pixel(x, y);
-      o[0] = bad ? 255 : faded;
-      o[1] = o[2] = bad ? 0 : faded;
-      o[3] = 255;
+      std::uint8_t* p = d.pixel(x, y);
+      p[0] = bad ? 255 : faded;
+      p[1] = p[2] = bad ? 0 : faded;
+      p[3] = 255;
     }
   return d;
 }
@@ -133,9 +252,9 @@ Image diff_image(const Image& expected, const Image& actual, int channel_toleran
 void SequenceComparison::add(const ImageComparison& c) {
   same_size &= c.same_size;
   if (!c.same_size) return;
-  if (worst_frame < 0 || c.differing_fraction() > worst_fraction) {
+  if (worst_frame < 0 || c.excess_of(c.largest) > worst.excess_of(worst.largest)) {
     worst_frame = frames;
-    worst_fraction = c.differing_fraction();
+    worst = c;
   }
   all_match &= c.match();
   max_channel_difference = std::max(max_channel_difference, c.max_channel_difference);

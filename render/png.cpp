@@ -140,7 +140,8 @@ PngText read_png_text(const std::string& path) {
 PngText png_text(const SnapshotInfo& info, std::size_t particles) {
   PngText t;
   t.emplace_back("Software", "grainshock");
-  t.emplace_back("Time", format_double(info.time));
+  if (info.has_time) t.emplace_back("Time", format_double(info.time));
+  if (info.step) t.emplace_back("Step", std::to_string(*info.step));
   t.emplace_back("Dim", std::to_string(info.dim));
   t.emplace_back("N", std::to_string(particles));
   if (info.has_box()) {

@@ -1,15 +1,17 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <optional>
-#include <thread>
 
 #include "render/annotations.h"
 #include "render/colormap.h"
 #include "render/field.h"
+#include "render/frame_threads.h"
 #include "render/gl_api.h"
 #include "sim/error.h"
 
@@ -17,6 +19,15 @@ namespace gs::render {
 namespace {
 
 constexpr int kHardSizeLimit = 16384;
+
+// What the CPU splats keep from frame to frame (filled anew each frame, never shrunk), so that a
+// movie's frames touch no fresh pages.
+struct SplatBuffers {
+  std::vector<std::array<std::uint16_t, 2>> span;  // per disc: its first and last band
+  std::vector<std::uint32_t> count, fill;          // per thread and band
+  std::vector<std::uint32_t> start;                // per band: where its list begins
+  std::vector<Sprite> binned;                      // the discs, band after band
+};
 
 // 2D discs as point sprites: llvmpipe rasterizes a point as one rectangle, where a quad costs
 // two triangle set-ups, which dominate when 2.5e5 discs are a pixel or two wide.
@@ -137,7 +148,14 @@ void main() {
 // The disc fragment shader's coverage rule on the CPU: pixel centres at half-integers, the
 // picture's centre at the camera origin, y up. Only the pixels whose centre lies within
 // rad + 0.5 of the disc's can be covered, so the loops stop there (a disc half a pixel wide
-// touches 2x2 pixels, not the 4x4 of its padded box). Rows [row0, row1) only.
+// touches 2x2 pixels, not the 4x4 of its padded box). Rows [row0, row1) only. The arithmetic is
+// that of the first version (double coverage, a blend rounding half up per channel), so the
+// pictures stay the same bytes; the four channels of a pixel are blended as one vector (the
+// alpha channel, 255 in picture and disc, stays 255.5 -> 255) and a fully covered pixel is
+// stored without a blend, since p + 1 * (c - p) + 0.5 truncates to c exactly.
+using Lanes = double __attribute__((vector_size(32)));
+using IntLanes = std::int32_t __attribute__((vector_size(16)));
+
 void splat_disc(Image& img, const Sprite& d, double ppu, int row0, int row1) {
   const double X = img.width / 2.0 + d.x * ppu, Y = img.height / 2.0 - d.y * ppu;
   const double rad = d.r * ppu;
@@ -145,55 +163,90 @@ void splat_disc(Image& img, const Sprite& d, double ppu, int row0, int row1) {
   const int y1 = std::min(row1 - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
   const int x0 = std::max(0, static_cast<int>(std::floor(X - rad)));
   const int x1 = std::min(img.width - 1, static_cast<int>(std::ceil(X + rad)) - 1);
+  if (x0 > x1) return;
   const double inner = rad > 0.5 ? (rad - 0.5) * (rad - 0.5) : -1;  // fully covered within
+  const double edge = rad + 0.5;
+  const std::uint8_t solid[4] = {d.rgba[0], d.rgba[1], d.rgba[2], 255};
+  const Lanes colour = {double(d.rgba[0]), double(d.rgba[1]), double(d.rgba[2]), 255.0};
   for (int y = y0; y <= y1; ++y) {
-    const double dy = y + 0.5 - Y;
-    for (int x = x0; x <= x1; ++x) {
-      const double dx = x + 0.5 - X, d2 = dx * dx + dy * dy;
-      const double a = d2 <= inner ? 1.0 : std::min(rad + 0.5 - std::sqrt(d2), 1.0);
+    const double dy = y + 0.5 - Y, dy2 = dy * dy;
+    std::uint8_t* p = img.pixel(x0, y);
+    for (int x = x0; x <= x1; ++x, p += 4) {
+      const double dx = x + 0.5 - X, d2 = dx * dx + dy2;
+      if (d2 <= inner) {
+        std::memcpy(p, solid, 4);
+        continue;
+      }
+      const double a = std::min(edge - std::sqrt(d2), 1.0);
       if (a <= 0) continue;
-      std::uint8_t* p = img.pixel(x, y);
-      for (int k = 0; k < 3; ++k)  // rounds half up, as lround does for these non-negatives
-        p[k] = static_cast<std::uint8_t>(p[k] + a * (d.rgba[k] - p[k]) + 0.5);
+      const Lanes was = {double(p[0]), double(p[1]), double(p[2]), double(p[3])};
+      const IntLanes out = __builtin_convertvector(was + a * (colour - was) + 0.5, IntLanes);
+      for (int k = 0; k < 4; ++k) p[k] = static_cast<std::uint8_t>(out[k]);
     }
   }
 }
 
 // Discs in random order write all over a picture larger than the caches, so they are first
 // copied into bands of 32 rows (in drawing order, a disc across two bands into both), and each
-// band is drawn from its own contiguous list with every write close by. Two threads take alternate
-// bands: the pixels are the same whatever the threads, since each pixel sees its discs in drawing
-// order.
-void splat_discs(Image& img, const std::vector<Sprite>& discs, double ppu,
-                 std::vector<Sprite>& binned) {
+// band, filled with the background, is drawn from its own contiguous list with every write close
+// by. The threads each sort their consecutive piece of the discs (placed after the pieces
+// before it, so each band's list is in drawing order) and then take bands as they come free:
+// the pixels are the same whatever the threads, since bands partition them and each pixel sees
+// its discs in drawing order.
+void splat_discs(Image& img, const std::uint8_t background[4], const std::vector<Sprite>& discs,
+                 double ppu, SplatBuffers& buf) {
   constexpr int kBand = 32;
   const int bands = (img.height + kBand - 1) / kBand;
-  auto band_range = [&](const Sprite& d) {
-    const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
-    const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
-    const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
-    return y0 > y1 ? std::pair{1, 0} : std::pair{y0 / kBand, y1 / kBand};
-  };
-  std::vector<std::uint32_t> start(bands + 1, 0);
-  for (const Sprite& d : discs) {
-    const auto [b0, b1] = band_range(d);
-    for (int b = b0; b <= b1; ++b) ++start[b + 1];
+  const std::size_t n = discs.size();
+  const int threads = frame_threads(std::max<std::size_t>(n, img.rgba.size() / 16), 20000);
+  buf.span.resize(n);
+  buf.count.assign(static_cast<std::size_t>(threads) * bands, 0);
+  run_on_threads(threads, [&](int t) {
+    const auto [first, last] = piece(n, threads, t);
+    std::uint32_t* count = &buf.count[static_cast<std::size_t>(t) * bands];
+    for (std::size_t i = first; i < last; ++i) {
+      const Sprite& d = discs[i];
+      const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
+      const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
+      const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
+      // An empty span (first band after the last) for a disc above or below the picture.
+      const auto b0 = static_cast<std::uint16_t>(y0 > y1 ? 1 : y0 / kBand);
+      const auto b1 = static_cast<std::uint16_t>(y0 > y1 ? 0 : y1 / kBand);
+      buf.span[i] = {b0, b1};
+      for (int b = b0; b <= b1; ++b) ++count[b];
+    }
+  });
+  // Band b's list starts at start[b]; thread t's piece of it after those of threads before t.
+  buf.start.assign(bands + 1, 0);
+  buf.fill.resize(static_cast<std::size_t>(threads) * bands);
+  std::uint32_t at = 0;
+  for (int b = 0; b < bands; ++b) {
+    buf.start[b] = at;
+    for (int t = 0; t < threads; ++t) {
+      buf.fill[static_cast<std::size_t>(t) * bands + b] = at;
+      at += buf.count[static_cast<std::size_t>(t) * bands + b];
+    }
   }
-  for (int b = 0; b < bands; ++b) start[b + 1] += start[b];
-  binned.resize(start.back());  // kept from frame to frame: no page faults for a new buffer
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (const Sprite& d : discs) {
-    const auto [b0, b1] = band_range(d);
-    for (int b = b0; b <= b1; ++b) binned[fill[b]++] = d;
-  }
-  auto draw = [&](int first) {
-    for (int b = first; b < bands; b += 2)
-      for (std::uint32_t k = start[b]; k < start[b + 1]; ++k)
-        splat_disc(img, binned[k], ppu, b * kBand, std::min(img.height, (b + 1) * kBand));
-  };
-  std::thread other(draw, 1);
-  draw(0);
-  other.join();
+  buf.start[bands] = at;
+  buf.binned.resize(at);  // kept from frame to frame: no page faults for a new buffer
+  run_on_threads(threads, [&](int t) {
+    const auto [first, last] = piece(n, threads, t);
+    std::uint32_t* fill = &buf.fill[static_cast<std::size_t>(t) * bands];
+    for (std::size_t i = first; i < last; ++i)
+      for (int b = buf.span[i][0]; b <= buf.span[i][1]; ++b) buf.binned[fill[b]++] = discs[i];
+  });
+  std::atomic<int> next{0};
+  std::uint32_t bg;
+  std::memcpy(&bg, background, 4);
+  run_on_threads(threads, [&](int) {
+    for (int b; (b = next.fetch_add(1, std::memory_order_relaxed)) < bands;) {
+      const int row0 = b * kBand, row1 = std::min(img.height, row0 + kBand);
+      auto* px = reinterpret_cast<std::uint32_t*>(img.pixel(0, row0));
+      std::fill(px, px + static_cast<std::size_t>(row1 - row0) * img.width, bg);
+      for (std::uint32_t k = buf.start[b]; k < buf.start[b + 1]; ++k)
+        splat_disc(img, buf.binned[k], ppu, row0, row1);
+    }
+  });
 }
 
 }  // namespace
@@ -215,7 +268,7 @@ struct Renderer::Impl {
   int max_size = 0, max_samples = 0;
   float max_point_size = 1;
   std::vector<Sprite> vertices;  // four per particle for quads
-  std::vector<Sprite> binned;    // tiny 2D discs by band of rows, for the CPU splats
+  SplatBuffers splat;            // tiny 2D discs by band of rows, for the CPU splats
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;
   std::string painter_font;
@@ -442,8 +495,7 @@ Image Renderer::draw(const Scene& sc) {
   if (splat) {  // nothing for GL to do: the background, then the discs, all on the CPU
     Image img(width, height);
     const std::uint8_t bg[4] = {pal.background[0], pal.background[1], pal.background[2], 255};
-    for (std::size_t i = 0; i < img.rgba.size(); i += 4) std::memcpy(&img.rgba[i], bg, 4);
-    splat_discs(img, sc.sprites, cam.pixels_per_unit(), m.binned);
+    splat_discs(img, bg, sc.sprites, cam.pixels_per_unit(), m.splat);
     return img;
   }
   const int samples = three_d ? std::min(std::max(style.msaa, 0), m.max_samples) : 0;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "render/field.h"
+#include "render/frame_threads.h"
 #include "render/occlusion.h"
 #include "render/overlay.h"
 #include "sim/error.h"
@@ -19,6 +20,8 @@ std::string fmt(const char* f, double v) {
 }
 
 std::string time_text(const SnapshotInfo& in) {
+  // A file without a time is labelled by its step (LAMMPS, HOOMD), not by a time of 0.
+  if (!in.has_time) return in.step ? "step " + std::to_string(*in.step) : std::string();
   std::string t = "t = " + fmt("%.6g", in.time);
   if (in.density)
     t += "   t_paper = " +
@@ -236,15 +239,21 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
 
   // Sprites: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
   // the 2D discs of active ones lie on top.
-  auto push = [&](const Eigen::Vector3d& p, double r, Rgb8 c, float shade) {
+  struct Out {
+    std::vector<Sprite>& sprites;
+    std::vector<float>& shade;
+    std::vector<Eigen::Vector3d>& band_x;
+    std::vector<double>& band_v;
+  };
+  auto push = [&](Out& out, const Eigen::Vector3d& p, double r, Rgb8 c, float shade) {
     if (!cam.visible(p, r)) return;
     const Eigen::Vector3d d = p - cam.origin;
-    sc.sprites.push_back({static_cast<float>(d.x()),
-                          static_cast<float>(d.y()),
-                          static_cast<float>(three_d ? d.z() : 0.0),
-                          static_cast<float>(r),
-                          {c[0], c[1], c[2], 255}});
-    sc.shade.push_back(shade);
+    out.sprites.push_back({static_cast<float>(d.x()),
+                           static_cast<float>(d.y()),
+                           static_cast<float>(three_d ? d.z() : 0.0),
+                           static_cast<float>(r),
+                           {c[0], c[1], c[2], 255}});
+    out.shade.push_back(shade);
   };
   std::size_t most = 0;
   for (const Snapshot* s : snaps) most += s->size();
@@ -268,10 +277,44 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     band_x.reserve(n);
     band_v.reserve(n);
   }
+  // A pass over particles [0, n) on the frame's threads: each takes a consecutive piece, the
+  // first appending to the scene, the others to vectors of their own appended after it in
+  // order, so the scene is the same whatever the threads.
+  auto in_order = [&](std::size_t n, auto&& visit) {
+    constexpr std::size_t kParticlesPerThread = 50000;
+    const int threads = frame_threads(n, kParticlesPerThread);
+    struct Piece {
+      std::vector<Sprite> sprites;
+      std::vector<float> shade;
+      std::vector<Eigen::Vector3d> band_x;
+      std::vector<double> band_v;
+    };
+    std::vector<Piece> pieces(threads - 1);
+    run_on_threads(threads, [&](int t) {
+      const auto [first, last] = piece(n, threads, t);
+      if (t == 0) {
+        Out out{sc.sprites, sc.shade, band_x, band_v};
+        for (std::size_t i = first; i < last; ++i) visit(out, i);
+        return;
+      }
+      Piece& mine = pieces[t - 1];
+      mine.sprites.reserve(last - first);
+      mine.shade.reserve(last - first);
+      Out out{mine.sprites, mine.shade, mine.band_x, mine.band_v};
+      for (std::size_t i = first; i < last; ++i) visit(out, i);
+    });
+    for (const Piece& p : pieces) {
+      sc.sprites.insert(sc.sprites.end(), p.sprites.begin(), p.sprites.end());
+      sc.shade.insert(sc.shade.end(), p.shade.begin(), p.shade.end());
+      band_x.insert(band_x.end(), p.band_x.begin(), p.band_x.end());
+      band_v.insert(band_v.end(), p.band_v.begin(), p.band_v.end());
+    }
+  };
   if (style.show_inactive) {
     const Snapshot& s = *snaps.back();
-    for (std::size_t i = 0; i < s.size(); ++i)
-      if (!s.active[i]) push(wrapped(s.position[i]), s.radius[i], pal.inactive, none);
+    in_order(s.size(), [&](Out& out, std::size_t i) {
+      if (!s.active[i]) push(out, wrapped(s.position[i]), s.radius[i], pal.inactive, none);
+    });
   }
   for (std::size_t k = 0; k < snaps.size(); ++k) {
     const Snapshot& s = *snaps[k];
@@ -279,23 +322,25 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     // Before the first collision nothing is active (DESIGN: active = has collided), but the
     // kicked particle moves: it is drawn, so that no frame of a kick is empty.
     const bool moving_instead = !any_active(s) && s.has_velocity();
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (!s.active[i] && !(moving_instead && s.velocity[i].squaredNorm() > 0)) continue;
+    in_order(s.size(), [&](Out& out, std::size_t i) {
+      if (!s.active[i] && !(moving_instead && s.velocity[i].squaredNorm() > 0)) return;
       if (profile && s.active[i]) {
-        band_x.push_back(s.position[i]);
+        out.band_x.push_back(s.position[i]);
         // As field_values computes a (scaled) speed, so the inset is the same either way.
         if (speed_values)
-          band_v.push_back(values[i]);
+          out.band_v.push_back(values[i]);
         else
-          band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms : s.velocity[i].norm());
+          out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms
+                                            : s.velocity[i].norm());
       }
       if (overlay || std::isnan(values[i])) {
-        push(wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);
-        continue;
+        push(out, wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive,
+             none);
+        return;
       }
       const double t = normalise(values[i], sc.range, style.scale);
-      push(wrapped(s.position[i]), s.radius[i], cmap.at8(t), static_cast<float>(t));
-    }
+      push(out, wrapped(s.position[i]), s.radius[i], cmap.at8(t), static_cast<float>(t));
+    });
   }
   if (profile) sc.inset = inset_profile(dim, band_x, band_v, scaled_inset);
   if (three_d && style.occlusion_cull) cull_occluded(sc);

@@ -530,6 +530,9 @@ void Engine<D>::snapshot(Snapshot& s) const {
   s.info.dim = D;
   s.info.set_cubic_box(grid_.box());
   s.info.time = now_;
+  // An event-driven run has no time step: its step is the collisions so far, which grows with
+  // the time as a step does (GSD's configuration/step, OVITO's Timestep).
+  s.info.step = stats_.collisions;
   s.info.density = static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;

@@ -21,7 +21,11 @@ struct SnapshotInfo {
   Eigen::Vector3d box = Eigen::Vector3d::Zero();
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double time = 0;                   // simulation time (diameter / v0 for our runs)
-  std::optional<std::int64_t> step;  // time step of LAMMPS and HOOMD files
+  // False when the file gives no time (LAMMPS dumps without ITEM: TIME, HOOMD's GSD, XYZ without
+  // Time): `time` is then 0, and pictures are labelled by the step (ReadOptions::dt turns it
+  // into a time).
+  bool has_time = true;
+  std::optional<std::int64_t> step;  // time step of LAMMPS and HOOMD files; collisions for ours
   std::optional<double> density, restitution, cutoff, speed;
   std::optional<std::uint64_t> seed;
 
@@ -50,6 +54,9 @@ struct Snapshot {
   std::vector<std::uint8_t> active;       // 1 once a particle has collided; all 1 if unknown
   std::vector<double> first_collision;    // time of first collision (-1: never); may be empty
   std::vector<Column> columns;            // further numeric columns of the file
+  // What a reader assumed where the file says nothing (masses of momenta, time from steps,
+  // positions folded into the cell), one sentence each, for the log of the command that reads it.
+  std::vector<std::string> notes;
 
   std::size_t size() const { return position.size(); }
   // Every particle has a velocity; so has a snapshot of none (the active particles before the

@@ -55,14 +55,19 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     EXPECT_NE(summary.find(key), std::string::npos) << key;
   for (const char* q :
        {"alpha from R_t", "alpha from N_t", "alpha from R_front", "alpha from dR_front/dt",
-        "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2", "band packing (typical)",
+        "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2",
+        "band packing (typical, cells of 10)", "band number density (typical, cells of 10)",
+        "alpha best collapsing P(R,t)", "alpha best collapsing P(v,t)",
+        "A(t) constant: d ln A / d ln t, last half decade",
         "band packing (upper, 90% quantile)", "band packing (densest cell, shifted grids)",
         "band packing (local, 90% quantile)", "band number density (shell peak, no pi/4)",
         "shell peak density / ambient", "A(t_max)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   const std::string report = read_file(dir / "report.md");
-  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "does not fix",
-                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png"})
+  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
+                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary",
+                        "numbers compared", "Sensitivity", "Plateaus and their drift",
+                        "corrected b"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 

@@ -29,8 +29,31 @@ void expect_near(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol 
   EXPECT_LT((a - b).norm(), tol) << a.transpose() << " vs " << b.transpose();
 }
 
+// By default the positions in the cell, as OVITO draws them: x as written, the image flags
+// kept as columns; with --unwrap (ReadOptions::unwrap) x plus the flags times the box.
+TEST(LammpsDump, PositionsInTheCellUnlessUnwrapped) {
+  const Snapshot a = read_snapshot(asset("custom_3d.lammpstrj"));
+  expect_near(a.position[0], {1, 2, 2.5});
+  expect_near(a.position[2], {4.5, 3.5, 2});
+  ASSERT_NE(a.column("iy"), nullptr);
+  EXPECT_EQ(a.column("iy")->values, (std::vector<double>{0, 0, 2}));
+  ASSERT_EQ(a.notes.size(), 1u);
+  EXPECT_NE(a.notes[0].find("--unwrap"), std::string::npos);
+  // xu alone is folded into the cell.
+  const std::string xu = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
+                         "0 10\n0 10\n0 10\nITEM: ATOMS id xu yu zu\n1 23 -4 5\n";
+  const Snapshot u = open_snapshots(MappedFile::from_bytes("xu.dump", xu)).read(0);
+  expect_near(u.position[0], {3, 6, 5});
+  ReadOptions unwrap;
+  unwrap.unwrap = true;
+  expect_near(open_snapshots(MappedFile::from_bytes("xu.dump", xu), unwrap).read(0).position[0],
+              {23, -4, 5});
+}
+
 TEST(LammpsDump, CustomColumnsInAnyOrderWithImagesAndScaledFrames) {
-  const SnapshotFile f = open_snapshots(asset("custom_3d.lammpstrj"));
+  ReadOptions unwrap;
+  unwrap.unwrap = true;
+  const SnapshotFile f = open_snapshots(asset("custom_3d.lammpstrj"), unwrap);
   EXPECT_STREQ(f.format(), "LAMMPS dump");
   ASSERT_EQ(f.frame_count(), 2u);
   const Snapshot a = f.read(0);
@@ -118,6 +141,41 @@ TEST(ExtXyzFromOthers, AseMomentaAndOvito2D) {
   EXPECT_EQ(o.info.box, Eigen::Vector3d(30, 10, 0));
   expect_near(o.velocity[1], {0, 2, 0});
   EXPECT_EQ(o.radius, (std::vector<double>{0.5, 1}));
+}
+
+// ASE writes momenta and no masses; each mass is the element's (ASE's table): H, Au and argon
+// (lower case, as ASE's reader capitalises it) all at speed 1, the made-up species A at mass 1.
+// With a Z column, Z decides (as in ASE), X and Z = 0 keep mass 1. The note names the masses.
+TEST(ExtXyzFromOthers, MomentaWithoutMassesTakeTheElementsMass) {
+  const Snapshot s = read_snapshot(asset("ase_elements.extxyz"));
+  ASSERT_EQ(s.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) expect_near(s.velocity[i], {0.6, 0.8, 0});
+  ASSERT_EQ(s.notes.size(), 2u);  // the masses, and the missing time
+  EXPECT_NE(s.notes[0].find("Au 196.966569"), std::string::npos) << s.notes[0];
+  EXPECT_NE(s.notes[0].find("H 1.008"), std::string::npos) << s.notes[0];
+  EXPECT_NE(s.notes[0].find("ar 39.948"), std::string::npos) << s.notes[0];
+  EXPECT_NE(s.notes[0].find("mass 1 for A"), std::string::npos) << s.notes[0];
+  EXPECT_FALSE(s.info.has_time);
+
+  const Snapshot z = read_snapshot(asset("ase_atomic_numbers.extxyz"));
+  ASSERT_EQ(z.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) expect_near(z.velocity[i], {0.6, 0.8, 0});
+  ASSERT_NE(z.column("Z"), nullptr);  // still there to colour by
+  EXPECT_NE(z.notes.at(0).find("Z=79 (Au) 196.966569"), std::string::npos) << z.notes[0];
+  EXPECT_TRUE(z.info.has_time);
+  EXPECT_EQ(z.info.time, 2.5);
+
+  // Ours (species X, ASE's mass 1 too) assume nothing: no note.
+  const Snapshot x = open_snapshots(MappedFile::from_bytes(
+      "x.xyz", "1\nProperties=species:S:1:pos:R:3:momenta:R:3 Time=1\nX 0 0 0 2 1 0\n")).read(0);
+  expect_near(x.velocity[0], {2, 1, 0});
+  EXPECT_TRUE(x.notes.empty()) << x.notes.front();
+
+  // A masses column wins over the elements.
+  const std::string with_masses =
+      "1\nProperties=species:S:1:pos:R:3:masses:R:1:momenta:R:3\nAu 0 0 0 2 1 0 0\n";
+  const Snapshot m = open_snapshots(MappedFile::from_bytes("masses.xyz", with_masses)).read(0);
+  expect_near(m.velocity[0], {0.5, 0, 0});
 }
 
 // Runs a command; true if it exited 0.

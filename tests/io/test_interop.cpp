@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -243,8 +244,58 @@ TEST(Interop, WeReadWhatAseWrites) {
   }
 }
 
+// ASE writes a mixture of H and Au, all at speed 1, with momenta and no masses (ASE takes each
+// mass from the element): once with species, once with a Z column and species X (ASE lets Z
+// win). Our velocities are ASE's get_velocities() to the last bits, so both elements come out
+// at speed 1 (without the element masses Au was drawn at 197 and H at 1).
+TEST(Interop, MomentaOfAseMixturesGiveAsesVelocities) {
+  if (!python_has("ase.io")) GTEST_SKIP() << kPython << " has no ase (python3-ase)";
+  const fs::path dir = scratch("ase_mixture");
+  const std::string out = python(
+      dir,
+      "import ase, ase.io, numpy as np\n"
+      "rng = np.random.default_rng(7)\n"
+      "n = 200\n"
+      "a = ase.Atoms(symbols=['H', 'Au'] * (n // 2), positions=rng.uniform(0, 20, (n, 3)),\n"
+      "              cell=[20, 20, 20], pbc=True)\n"
+      "d = rng.normal(size=(n, 3))\n"
+      "a.set_velocities(d / np.linalg.norm(d, axis=1)[:, None])\n"
+      "ase.io.write('species.extxyz', a, format='extxyz')\n"
+      "ase.io.write('z.extxyz', a, format='extxyz',\n"
+      "             columns=['symbols', 'positions', 'numbers', 'momenta'])\n"
+      "lines = open('z.extxyz').read().split('\\n')\n"
+      "lines = lines[:2] + ['X ' + l.split(None, 1)[1] if l else l for l in lines[2:]]\n"
+      "open('z.extxyz', 'w').write('\\n'.join(lines))\n"
+      "for f in ['species.extxyz', 'z.extxyz']:\n"
+      "    for v in ase.io.read(f).get_velocities():\n"
+      "        print(' '.join(repr(float(x)) for x in v))\n");
+  ASSERT_EQ(out.rfind("FAILED", 0), std::string::npos) << out;
+  std::istringstream in(out);
+  for (const char* name : {"species.extxyz", "z.extxyz"}) {
+    SCOPED_TRACE(name);
+    const Snapshot s = read_snapshot((dir / name).string());
+    ASSERT_EQ(s.size(), 200u);
+    double worst = 0;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};  // speeds of H (even i) and Au (odd)
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const auto v = numbers(in, 3);
+      for (int a = 0; a < 3; ++a) worst = std::max(worst, std::abs(s.velocity[i][a] - v[a]));
+      lo[i % 2] = std::min(lo[i % 2], s.velocity[i].norm());
+      hi[i % 2] = std::max(hi[i % 2], s.velocity[i].norm());
+      // ASE prints momenta with 8 decimals: Au's speed is 1 within 1e-8 / 197.
+      ASSERT_NEAR(s.velocity[i].norm(), 1, 1e-7) << "particle " << i;
+    }
+    EXPECT_LE(worst, 1e-15);
+    std::printf("%s: max |v - get_velocities()| = %.3g; speeds H %.9f..%.9f, Au %.9f..%.9f\n",
+                name, worst, lo[0], hi[0], lo[1], hi[1]);
+    ASSERT_FALSE(s.notes.empty());
+    EXPECT_NE(s.notes[0].find("196.966569"), std::string::npos) << s.notes[0];
+  }
+}
+
 // gsd.hoomd writes a 3D trajectory whose later frames hold only what changed (HOOMD's rule:
-// the rest is frame 0's): every frame, box, step, unwrapped positions and velocities.
+// the rest is frame 0's): every frame, box, step, positions (unwrapped when asked) and
+// velocities; no time, so none is made up.
 TEST(Interop, WeReadWhatTheGsdModuleWrites) {
   if (!python_has("gsd.hoomd")) GTEST_SKIP() << kPython << " has no gsd (python3-gsd)";
   const fs::path dir = scratch("gsd_writes");
@@ -265,12 +316,20 @@ TEST(Interop, WeReadWhatTheGsdModuleWrites) {
                                  "    f.append(s)\n"
                                  "f.close()\n");
   ASSERT_EQ(out.rfind("FAILED", 0), std::string::npos) << out;
-  const SnapshotFile f = open_snapshots((dir / "traj.gsd").string());
+  ReadOptions unwrap;
+  unwrap.unwrap = true;
+  const SnapshotFile f = open_snapshots((dir / "traj.gsd").string(), unwrap);
   ASSERT_EQ(f.frame_count(), 3u);
+  // By default in the cell, as OVITO draws it, the image counts as columns.
+  const Snapshot in_cell = read_snapshot((dir / "traj.gsd").string());
+  EXPECT_EQ(in_cell.position[1], Eigen::Vector3d(-3.5, 0.25, 1));
+  ASSERT_NE(in_cell.column("image_z"), nullptr);
+  EXPECT_EQ(in_cell.column("image_z")->values, (std::vector<double>{0, -1}));
   for (std::size_t k = 0; k < 3; ++k) {
     const Snapshot s = f.read(k);
     EXPECT_EQ(s.info.dim, 3);
     EXPECT_EQ(s.info.step, static_cast<std::int64_t>(100 * k));
+    EXPECT_FALSE(s.info.has_time);
     EXPECT_EQ(s.info.box, Eigen::Vector3d(8, 6, 4));
     ASSERT_EQ(s.size(), 2u);
     EXPECT_EQ(s.position[0], Eigen::Vector3d(1, 2, -1.5));

@@ -181,7 +181,9 @@ TEST(SnapshotFile, LargeFramesReadInTwoHalvesAsInOnePass) {
     EXPECT_EQ(a.position[i], Eigen::Vector3d(i % 1000 + 0.25, i / 1000, 1)) << i;
     EXPECT_EQ(a.velocity[i], Eigen::Vector3d(i, 0, -1)) << i;
   }
-  const Snapshot d = open_snapshots(MappedFile::from_bytes("big.dump", dump)).read(0);
+  ReadOptions unwrap;
+  unwrap.unwrap = true;
+  const Snapshot d = open_snapshots(MappedFile::from_bytes("big.dump", dump), unwrap).read(0);
   ASSERT_EQ(d.size(), static_cast<std::size_t>(n));
   for (int i = 0; i < n; i += 997) {  // x unwrapped by its own row's image flag
     EXPECT_EQ(d.position[i].x(), i % 10 + 10.0 * (i % 3 - 1)) << i;

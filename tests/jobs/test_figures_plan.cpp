@@ -80,5 +80,35 @@ TEST(FiguresPlan, FullRunsTheLargeElasticBlast) {
   EXPECT_GE(p.t_max, 2e4);
 }
 
+TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
+  // Issue 33: at delta = 1e-4 the 2D N_t slope drifts into the delta crossover before t_max.
+  // t_c2 ~ 2.2e4 (5e-4 / delta)^(3/2) (measured in the delta scan, 2D r = 0.1) must come at
+  // least 10 times after every 2D r < 1 paper run; 3D keeps 1e-6 (its E_t slope turns at 1e-4).
+  // The delta scan keeps its larger cutoffs.
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    const FiguresPlan plan = figures_plan(m, 1);
+    for (const FigureCase* c : of_role(plan, CaseRole::Paper)) {
+      const auto& p = c->spec.physics;
+      if (p.restitution >= 1) continue;
+      if (p.dim == 3) {
+        EXPECT_LE(p.cutoff, 1e-6) << c->name;
+      } else if (p.dim == 2) {
+        EXPECT_GE(2.2e4 * std::pow(5e-4 / p.cutoff, 1.5), 10 * p.t_max) << c->name;
+      }
+    }
+    for (const FigureCase* c : of_role(plan, CaseRole::DeltaScan))
+      EXPECT_GE(c->spec.physics.cutoff, 1e-4) << c->name;
+    EXPECT_TRUE(of_role(plan, CaseRole::Long3D).empty());
+    const auto with = of_role(figures_plan(m, 1, true), CaseRole::Long3D);
+    ASSERT_EQ(with.size(), 2u);
+    for (const FigureCase* c : with) {
+      EXPECT_EQ(c->spec.physics.dim, 3);
+      EXPECT_LE(c->spec.physics.cutoff, 1e-6);
+      EXPECT_GE(c->spec.physics.t_max, 1e6);
+      EXPECT_GE(c->spec.realisations, 16u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gs::jobs

@@ -32,8 +32,9 @@ std::string check_golden(const render::Image& actual, const std::string& name) {
   render::write_png(actual_path, actual);
   render::write_png(diff_path, render::diff_image(expected, actual));
   return "picture differs from " + golden.string() + ": " +
-         (c.same_size ? std::to_string(c.differing) + " pixels beyond the tolerance, " +
-                            std::to_string(c.allowed) + " allowed"
+         (c.same_size ? "worst differing blob " + std::to_string(c.largest.pixels) + " px, mass " +
+                            std::to_string(c.largest.mass) + " at x " +
+                            std::to_string(c.largest.x0) + ", y " + std::to_string(c.largest.y0)
                       : std::string("sizes differ")) +
          "; actual: " + actual_path + ", diff: " + diff_path;
 }

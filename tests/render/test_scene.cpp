@@ -63,6 +63,18 @@ double rms_of_active(const Snapshot& s) {
   return std::sqrt(sum / n);
 }
 
+// A frame without a time (LAMMPS without ITEM: TIME, HOOMD) is labelled by its step.
+TEST(Scene, FramesWithoutTimeAreLabelledByStep) {
+  Snapshot s = ring(2, 1);
+  Style st;
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).time_text.rfind("t = 50", 0), 0u);
+  s.info.has_time = false;
+  s.info.step = 500;
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).time_text, "step 500");
+  s.info.step.reset();
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).time_text, "");
+}
+
 TEST(Scene, ScaledSpeedIsOverTheActiveRmsAndUsesTheFixedRange) {
   const Snapshot s = ring(2, 1);
   EXPECT_EQ(default_field(s), Field::ScaledSpeed) << "a gas with particles at rest is a kick";

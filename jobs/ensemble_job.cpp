@@ -1,0 +1,179 @@
+#include "jobs/ensemble_job.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "analysis/ensemble_ranks.h"
+#include "analysis/ensemble_runner.h"
+#include "analysis/json.h"
+#include "io/atomic_file.h"
+#include "io/output_dir.h"
+#include "sim/error.h"
+#include "sim/stop.h"
+
+namespace gs::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What a rank other than 0 ends with: the exit code rank 0 gives it.
+EnsembleResult served(Ranks& ranks) {
+  EnsembleResult r;
+  r.served = serve_ensemble(ranks);
+  return r;
+}
+
+// Runs what the folder's job still lacks (all of it for a new folder) and writes the results.
+EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads, bool quiet,
+                       const ProgressFactory& progress_factory, Ranks& ranks) {
+  const fs::path rdir = dir / "realisations";
+  const auto held = finished_realisations(rdir, job.spec).size();
+  const std::uint64_t to_run = job.spec.realisations - held;
+  if (!quiet && held > 0)
+    std::fprintf(stderr, "grainshock: resuming %s: %zu of %llu realisations finished before\n",
+                 dir.c_str(), held, static_cast<unsigned long long>(job.spec.realisations));
+  if (!quiet && std::uint64_t(ranks.size()) > to_run)
+    std::fprintf(stderr, "grainshock: %d ranks for %llu realisations to run: ranks %llu-%d idle\n",
+                 ranks.size(), static_cast<unsigned long long>(to_run),
+                 static_cast<unsigned long long>(to_run), ranks.size() - 1);
+
+  install_stop_handlers();
+  const auto progress_line = open_progress(progress_factory);
+  ProgressLine& progress = *progress_line;
+  RunnerOptions ro;
+  ro.threads = threads;
+  ro.realisations_dir = rdir;
+  ro.ranks = &ranks;
+  ro.on_progress = [&](std::uint64_t done, std::uint64_t total) {
+    progress.update(double(done) / double(total), std::to_string(held + done) + " of " +
+                                                      std::to_string(job.spec.realisations) +
+                                                      " realisations");
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  RunnerResult r = run_ensemble(job.spec, ro);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  progress.done();
+  if (r.sums.count() == 0)
+    throw UserError("interrupted before any realisation finished (resume with: grainshock resume " +
+                    dir.string() + ")");
+  const EnsembleTiming timing{wall, threads, ranks.size(), r.sums.count() - r.resumed};
+  const EnsembleFits fits = write_ensemble_folder(dir, r.sums, job, timing);
+  if (!r.interrupted && !job.keep_realisations) {
+    // Renamed first, so that a kill while deleting cannot leave a folder that looks unfinished.
+    const fs::path gone = dir / (".realisations.tmp." + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::rename(rdir, gone, ec);
+    if (!ec) fs::remove_all(gone, ec);
+  }
+  if (!quiet)
+    std::fprintf(stderr,
+                 "grainshock: %s %llu of %llu realisations (%llu run now, in %.3g s on %s%d "
+                 "threads); results in %s\n",
+                 r.interrupted ? "interrupted with" : "finished",
+                 static_cast<unsigned long long>(r.sums.count()),
+                 static_cast<unsigned long long>(job.spec.realisations),
+                 static_cast<unsigned long long>(timing.realisations), wall,
+                 ranks.size() > 1 ? (std::to_string(ranks.size()) + " ranks x ").c_str() : "",
+                 threads, dir.c_str());
+  return {.interrupted = r.interrupted, .exponent_table = exponent_table(r.sums, fits)};
+}
+
+}  // namespace
+
+FitOptions fit_options(int resamples, const std::vector<double>& window, const EnsembleSpec& spec) {
+  FitOptions fit;
+  fit.resamples = resamples;
+  if (!window.empty()) {
+    if (window.size() != 2) throw UserError("--window needs two times T1,T2");
+    fit.window = Window{window[0], window[1]};
+  }
+  check_fit_options(spec, fit);
+  return fit;
+}
+
+EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
+  Ranks& ranks = Ranks::world();
+  if (ranks.rank() != 0) return served(ranks);
+  // Every check before the output folder is touched: bad input leaves nothing behind.
+  if (o.realisations < 1) throw UserError("--realisations must be at least 1");
+  if (o.threads < 1) throw UserError("--threads must be at least 1");
+  EnsembleJob job;
+  job.spec.physics = o.physics;
+  job.spec.realisations = static_cast<std::uint64_t>(o.realisations);
+  job.spec.per_decade = o.per_decade;
+  job.spec.bins = o.bins;
+  job.spec.snapshot_times = o.snapshot_times;
+  job.spec = checked(job.spec);
+  job.fit = fit_options(o.resamples, o.window, job.spec);
+  job.keep_realisations = o.per_realisation;
+
+  const fs::path dir(o.out);
+  const bool resume = !o.force && holds_unfinished_ensemble(dir);
+  if (resume && job_toml(read_job(dir / "ensemble.toml")) != job_toml(job))
+    throw UserError("--out " + o.out +
+                    ": holds an unfinished ensemble of other settings (its ensemble.toml); "
+                    "resume it with: grainshock resume " +
+                    o.out + ", or use --force to start again");
+  if (!resume) prepare_output_dir(o.out, o.force);
+  // A second process on the folder (a requeued job, a repeated command) is refused instead of
+  // running the same realisations; the kernel drops the lock even on kill -9.
+  lock_output_dir(dir);
+  if (!resume) {
+    std::error_code ec;
+    fs::remove_all(dir / "realisations", ec);  // --force starts again
+    write_file_atomic(dir / "ensemble.toml", job_toml(job));
+  }
+  return run_job(dir, job, o.threads, o.quiet, o.progress, ranks);
+}
+
+bool holds_unfinished_ensemble(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "ensemble.toml", ec)) return false;
+  // Killed before the results were written (ensemble.toml is written before anything runs).
+  if (!fs::exists(dir / "summary.json", ec)) return true;
+  // Finished without --per-realisation (realisations/ is removed then), or merged.
+  if (!fs::is_directory(dir / "realisations", ec)) return false;
+  // Interrupted (SIGINT, SIGTERM) with the results of the realisations finished by then.
+  const EnsembleSpec spec = read_job(dir / "ensemble.toml").spec;
+  return finished_realisations(dir / "realisations", spec).size() < spec.realisations;
+}
+
+EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
+                               const ProgressFactory& progress) {
+  Ranks& ranks = Ranks::world();
+  if (ranks.rank() != 0) return served(ranks);
+  if (threads < 1) throw UserError("--threads must be at least 1");
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "ensemble.toml", ec))
+    throw UserError(dir.string() + ": not an ensemble folder (no ensemble.toml)");
+  if (!holds_unfinished_ensemble(dir))
+    throw UserError(dir.string() + ": the ensemble is finished (nothing to resume)");
+  const EnsembleJob job = read_job(dir / "ensemble.toml");
+  lock_output_dir(dir);
+  return run_job(dir, job, threads, quiet, progress, ranks);
+}
+
+EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
+                                   const EnsembleJob& job, const EnsembleTiming& t) {
+  const EnsembleFits fits = fit_ensemble(sums, job.fit);
+  write_file_atomic(dir / "ensemble.toml", job_toml(job));
+  write_ensemble_outputs(dir, sums, fits);
+  std::ostringstream j;
+  j << "{\n  \"wall_seconds\": " << json_number(t.wall_seconds) << ",\n  \"threads\": " << t.threads
+    << ",\n  \"ranks\": " << t.ranks << ",\n  \"realisations_run\": " << t.realisations
+    << ",\n  \"wall_seconds_per_realisation\": "
+    << json_number(t.wall_seconds / double(std::max<std::uint64_t>(1, t.realisations))) << "\n}\n";
+  write_file_atomic(dir / "timing.json", j.str());
+  return fits;
+}
+
+EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
+                                   const FitOptions& fit, double wall_seconds, int threads) {
+  return write_ensemble_folder(dir, sums, EnsembleJob{held_spec(sums), fit},
+                               EnsembleTiming{wall_seconds, threads, 1, sums.count()});
+}
+
+}  // namespace gs::jobs
