@@ -87,7 +87,8 @@ std::vector<Figure> measure(const Snapshot& s, const render::Style& style, const
   const std::clock_t c0 = std::clock();
   for (int k = 0; k < frames; ++k) {
     t0 = clock::now();
-    r.render(s, style, view);
+    // Handed back as a movie's frame loop does once the frame is encoded.
+    r.recycle(r.render(s, style, view));
     ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
   }
   // CPU time of all threads (llvmpipe's rasterizer included): on a shared machine it says what

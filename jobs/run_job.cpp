@@ -8,8 +8,6 @@
 #include <sstream>
 
 #include "analysis/json.h"
-#include "apps/cli.h"
-#include "apps/exit_code.h"
 #include "io/atomic_file.h"
 #include "io/output_dir.h"
 #include "io/snapshot_file.h"

@@ -9,25 +9,33 @@ namespace gs::render {
 
 std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
                                  const std::string& column) {
+  std::vector<double> v;
+  field_values(s, f, v_rms, column, v);
+  return v;
+}
+
+void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& column,
+                  std::vector<double>& v) {
   const std::size_t n = s.size();
-  std::vector<double> v(n);
+  v.resize(n);  // every value is written below
   if (v_rms) *v_rms = 0;
   if (f == Field::None) {
     v.assign(n, 0.5);
-    return v;
+    return;
   }
   if (f == Field::Column) {
     const Column* c = s.column(column);
     if (!c) throw UserError("snapshot has no column '" + column + "'; cannot colour by it");
     GS_CHECK(c->values.size() == n);
-    return c->values;
+    v = c->values;
+    return;
   }
   if (f == Field::FirstCollision) {
     if (n > 0 && s.first_collision.size() != n)
       throw UserError("snapshot has no first_collision column; cannot colour by first collision");
     for (std::size_t i = 0; i < n; ++i)
       v[i] = s.first_collision[i] < 0 ? std::nan("") : s.first_collision[i];
-    return v;
+    return;
   }
   if (n > 0 && !s.has_velocity())
     throw UserError(std::string("snapshot has no velocities (velo); cannot colour by ") +
@@ -49,7 +57,7 @@ std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
       v[i] = len > 0 ? (s.velocity[i] - drift).dot(r) / len : 0;
     }
   }
-  if (!is_scaled(f)) return v;
+  if (!is_scaled(f)) return;
   double sum = 0;
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -61,7 +69,6 @@ std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms,
   if (v_rms) *v_rms = rms;
   if (rms > 0)
     for (double& x : v) x /= rms;
-  return v;
 }
 
 Field default_field(const Snapshot& s) {
@@ -106,6 +113,8 @@ Field choose_field(const std::string& name, const Snapshot& s, const std::string
                   list);
 }
 
+constexpr double kDegenerateSpread = 1e-3;
+
 std::pair<double, double> auto_range(const std::vector<double>& values,
                                      const std::vector<std::uint8_t>& mask, Scale scale, double plo,
                                      double phi) {
@@ -120,16 +129,18 @@ std::pair<double, double> auto_range(const std::vector<double>& values,
     std::nth_element(x.begin(), x.begin() + k, x.end());
     return x[k];
   };
-  double lo = pick(std::clamp(plo, 0.0, 100.0)), hi = pick(std::clamp(phi, 0.0, 100.0));
-  if (!(hi > lo)) {
-    if (scale == Scale::Log) {
-      lo /= 2, hi *= 2;
-    } else {
-      const double w = std::max(std::abs(lo) * 0.05, 1e-9);
-      lo -= w, hi += w;
-    }
+  const double lo = pick(std::clamp(plo, 0.0, 100.0)), hi = pick(std::clamp(phi, 0.0, 100.0));
+  // A spread below 1e-3 of the values is below what the colour bar's three-digit labels can
+  // show, and in a file written to six decimals (a ring of one speed) it is round-off: stretched
+  // over the colour map it would paint noise. Such a range is one value, shown in one colour.
+  if (scale == Scale::Log) {
+    if (hi > lo * (1 + kDegenerateSpread)) return {lo, hi};
+    const double c = std::sqrt(lo * hi);
+    return {c / 2, c * 2};
   }
-  return {lo, hi};
+  if (hi - lo > kDegenerateSpread * std::max(std::abs(lo), std::abs(hi))) return {lo, hi};
+  const double c = lo / 2 + hi / 2, w = std::max(std::abs(c) * 0.05, 1e-9);
+  return {c - w, c + w};
 }
 
 double normalise(double v, std::pair<double, double> range, Scale scale) {

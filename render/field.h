@@ -17,6 +17,9 @@ namespace gs::render {
 // the snapshot's column of that name; None gives 0.5 for every particle.
 std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms = nullptr,
                                  const std::string& column = {});
+// The same into `v`, whose memory a caller drawing frame after frame keeps.
+void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& column,
+                  std::vector<double>& v);
 
 // scaled-speed for a gas disturbed at rest (a kick: some particles have never moved), speed
 // otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly).

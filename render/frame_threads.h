@@ -3,6 +3,7 @@
 // not depend on which thread makes them (halves of the particles kept in order, bands of rows
 // that partition the pixels), so the picture is the same bytes on one core or many.
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <thread>
 #include <utility>
@@ -10,10 +11,16 @@
 
 namespace gs::render {
 
+// When > 0, the most threads a frame uses instead of the cores (tests set it to show that the
+// pictures do not depend on it).
+inline std::atomic<int> frame_thread_limit{0};
+
 // Threads for a frame of `work` items, each thread taking at least `min_per_thread` of them:
 // 1 for small frames, at most the cores (hardware_concurrency; 1 if unknown) and at most 8.
 inline int frame_threads(std::size_t work, std::size_t min_per_thread) {
-  const auto cores = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
+  const int limit = frame_thread_limit.load(std::memory_order_relaxed);
+  const auto cores = std::clamp(
+      limit > 0 ? limit : static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
   const auto by_work = static_cast<int>(std::min<std::size_t>(work / min_per_thread, 8));
   return std::max(1, std::min(cores, by_work));
 }

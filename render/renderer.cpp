@@ -22,7 +22,22 @@ constexpr int kHardSizeLimit = 16384;
 
 // What the CPU splats keep from frame to frame (filled anew each frame, never shrunk), so that a
 // movie's frames touch no fresh pages.
+// The coverage of one disc radius at kPhases x kPhases sub-pixel positions of the centre, for
+// the splats: the rule of splat_disc (coverage from the distance to the rim) evaluated once per
+// frame at the middle of each phase cell and kept as 8 bits, so that a disc costs table reads
+// and integer blends instead of a square root and float blends per pixel.
+constexpr int kPhases = 32;
+struct Stamps {
+  float r = -1;     // world radius of the discs (with ppu: the pixel radius)
+  double ppu = 0;
+  int lo = 0, size = 0;  // pixels lo .. lo + size - 1 from the centre's pixel, in x and in y
+  // Per phase (y major): the box of pixels with coverage > 0, offsets from lo.
+  std::vector<std::array<std::uint8_t, 4>> box;  // x0, x1, y0, y1 (inclusive; x0 > x1: none)
+  std::vector<std::uint8_t> alpha;  // per phase, size x size, row major; 0..255
+};
+
 struct SplatBuffers {
+  std::vector<Stamps> stamps;                      // one per radius of this frame's discs
   std::vector<std::array<std::uint16_t, 2>> span;  // per disc: its first and last band
   std::vector<std::uint32_t> count, fill;          // per thread and band
   std::vector<std::uint32_t> start;                // per band: where its list begins
@@ -186,6 +201,73 @@ void splat_disc(Image& img, const Sprite& d, double ppu, int row0, int row1) {
   }
 }
 
+
+// Largest pixel radius drawn from stamps (larger discs are few and cover many pixels each) and
+// the most radii a frame keeps stamps for (a polydisperse file is drawn disc by disc).
+constexpr double kStampMaxPx = 3;
+constexpr std::size_t kMaxStampRadii = 4;
+
+void make_stamps(Stamps& st, float r, double ppu) {
+  if (st.r == r && st.ppu == ppu) return;  // a movie keeps its stamps from frame to frame
+  st.r = r;
+  st.ppu = ppu;
+  const double rad = r * ppu, edge = rad + 0.5;
+  const int reach = static_cast<int>(std::ceil(rad)) + 1;
+  st.lo = -reach;
+  st.size = 2 * reach + 1;
+  const auto cells = static_cast<std::size_t>(st.size) * st.size;
+  st.alpha.assign(cells * kPhases * kPhases, 0);
+  st.box.assign(kPhases * kPhases, {255, 0, 255, 0});
+  for (int qy = 0; qy < kPhases; ++qy)
+    for (int qx = 0; qx < kPhases; ++qx) {
+      const double fx = (qx + 0.5) / kPhases, fy = (qy + 0.5) / kPhases;
+      const std::size_t phase = static_cast<std::size_t>(qy) * kPhases + qx;
+      std::uint8_t* a = &st.alpha[phase * cells];
+      auto& b = st.box[phase];
+      for (int j = 0; j < st.size; ++j)
+        for (int i = 0; i < st.size; ++i) {
+          const double dx = st.lo + i + 0.5 - fx, dy = st.lo + j + 0.5 - fy;
+          const double cover = std::min(edge - std::sqrt(dx * dx + dy * dy), 1.0);
+          if (cover <= 0) continue;
+          const auto a8 = static_cast<std::uint8_t>(std::lround(cover * 255));
+          if (a8 == 0) continue;
+          a[j * st.size + i] = a8;
+          b = {std::min<std::uint8_t>(b[0], i), std::max<std::uint8_t>(b[1], i),
+               std::min<std::uint8_t>(b[2], j), std::max<std::uint8_t>(b[3], j)};
+        }
+    }
+}
+
+// A disc from its stamp: the centre's phase picks the coverage, the picture's pixels are
+// blended in integers, (p (255 - a) + c a + 127) / 255, which is c where the disc covers fully.
+void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int row0, int row1) {
+  const double X = img.width / 2.0 + d.x * ppu, Y = img.height / 2.0 - d.y * ppu;
+  const double fX = std::floor(X), fY = std::floor(Y);
+  if (!(std::abs(fX) < 1e9 && std::abs(fY) < 1e9)) return;  // far outside (or not a number)
+  const int ix = static_cast<int>(fX), iy = static_cast<int>(fY);
+  const int qx = std::min(kPhases - 1, static_cast<int>((X - fX) * kPhases));
+  const int qy = std::min(kPhases - 1, static_cast<int>((Y - fY) * kPhases));
+  const std::size_t phase = static_cast<std::size_t>(qy) * kPhases + qx;
+  const auto& b = st.box[phase];
+  const int x0 = std::max(0, ix + st.lo + b[0]), x1 = std::min(img.width - 1, ix + st.lo + b[1]);
+  const int y0 = std::max(row0, iy + st.lo + b[2]), y1 = std::min(row1 - 1, iy + st.lo + b[3]);
+  if (x0 > x1) return;
+  const std::uint8_t* alpha = &st.alpha[phase * st.size * st.size];
+  const unsigned c0 = d.rgba[0], c1 = d.rgba[1], c2 = d.rgba[2];
+  for (int y = y0; y <= y1; ++y) {
+    const std::uint8_t* a = alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo);
+    std::uint8_t* p = img.pixel(x0, y);
+    for (int x = x0; x <= x1; ++x, p += 4) {
+      const unsigned w = *a++;
+      if (w == 0) continue;
+      const unsigned v = 255 - w;
+      p[0] = static_cast<std::uint8_t>((p[0] * v + c0 * w + 127) / 255);
+      p[1] = static_cast<std::uint8_t>((p[1] * v + c1 * w + 127) / 255);
+      p[2] = static_cast<std::uint8_t>((p[2] * v + c2 * w + 127) / 255);
+    }
+  }
+}
+
 // Discs in random order write all over a picture larger than the caches, so they are first
 // copied into bands of 32 rows (in drawing order, a disc across two bands into both), and each
 // band, filled with the background, is drawn from its own contiguous list with every write close
@@ -201,11 +283,19 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
   const int threads = frame_threads(std::max<std::size_t>(n, img.rgba.size() / 16), 20000);
   buf.span.resize(n);
   buf.count.assign(static_cast<std::size_t>(threads) * bands, 0);
+  // The radii of the discs, kMaxStampRadii + 1 at most per thread (then there are too many).
+  std::vector<std::vector<float>> radii(threads);
   run_on_threads(threads, [&](int t) {
     const auto [first, last] = piece(n, threads, t);
     std::uint32_t* count = &buf.count[static_cast<std::size_t>(t) * bands];
+    std::vector<float>& mine = radii[t];
+    float last_r = -1;
     for (std::size_t i = first; i < last; ++i) {
       const Sprite& d = discs[i];
+      if (d.r != last_r && mine.size() <= kMaxStampRadii) {
+        last_r = d.r;
+        if (std::find(mine.begin(), mine.end(), d.r) == mine.end()) mine.push_back(d.r);
+      }
       const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
       const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
       const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
@@ -235,6 +325,26 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
     for (std::size_t i = first; i < last; ++i)
       for (int b = buf.span[i][0]; b <= buf.span[i][1]; ++b) buf.binned[fill[b]++] = discs[i];
   });
+  std::vector<float> all;
+  for (const auto& r : radii)
+    for (float x : r)
+      if (std::find(all.begin(), all.end(), x) == all.end()) all.push_back(x);
+  if (all.size() > kMaxStampRadii) all.clear();
+  std::erase_if(all, [&](float r) { return !(r * ppu <= kStampMaxPx); });
+  // Stamps kept for radii still drawn are reused; the others are made anew.
+  std::vector<Stamps> kept;
+  for (float r : all) {
+    auto it = std::find_if(buf.stamps.begin(), buf.stamps.end(),
+                           [&](const Stamps& st) { return st.r == r && st.ppu == ppu; });
+    kept.push_back(it != buf.stamps.end() ? std::move(*it) : Stamps{});
+    make_stamps(kept.back(), r, ppu);
+  }
+  buf.stamps = std::move(kept);
+  auto stamps_of = [&](float r) -> const Stamps* {
+    for (const Stamps& st : buf.stamps)
+      if (st.r == r) return &st;
+    return nullptr;
+  };
   std::atomic<int> next{0};
   std::uint32_t bg;
   std::memcpy(&bg, background, 4);
@@ -243,8 +353,16 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
       const int row0 = b * kBand, row1 = std::min(img.height, row0 + kBand);
       auto* px = reinterpret_cast<std::uint32_t*>(img.pixel(0, row0));
       std::fill(px, px + static_cast<std::size_t>(row1 - row0) * img.width, bg);
-      for (std::uint32_t k = buf.start[b]; k < buf.start[b + 1]; ++k)
-        splat_disc(img, buf.binned[k], ppu, row0, row1);
+      float r = -1;
+      const Stamps* st = nullptr;
+      for (std::uint32_t k = buf.start[b]; k < buf.start[b + 1]; ++k) {
+        const Sprite& d = buf.binned[k];
+        if (d.r != r) r = d.r, st = stamps_of(r);
+        if (st)
+          stamp_disc(img, d, *st, ppu, row0, row1);
+        else
+          splat_disc(img, d, ppu, row0, row1);
+      }
     }
   });
 }
@@ -269,6 +387,8 @@ struct Renderer::Impl {
   float max_point_size = 1;
   std::vector<Sprite> vertices;  // four per particle for quads
   SplatBuffers splat;            // tiny 2D discs by band of rows, for the CPU splats
+  SceneScratch scene_scratch;    // the scenes' memory, from frame to frame
+  std::vector<std::uint8_t> spare;  // a recycled picture's pixels
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;
   std::string painter_font;
@@ -449,18 +569,25 @@ const char* Renderer::backend_name() const {
 Scene Renderer::scene(const std::vector<const Snapshot*>& snaps, const Style& style,
                       const View& view) {
   check_size(view.width, view.height, impl_->max_size);
-  return build_scene(snaps, style, view, impl_->overlay_painter(style.font));
+  return build_scene(snaps, style, view, impl_->overlay_painter(style.font), &impl_->scene_scratch);
 }
 
 Image Renderer::render(const std::vector<const Snapshot*>& snaps, const Style& style,
                        const View& view) {
-  const Scene sc = scene(snaps, style, view);
+  Scene sc = scene(snaps, style, view);
   Image img = draw(sc);
   const Annotations a = annotate(img, sc, impl_->overlay_painter(style.font));
   impl_->info.colorbar = a.colorbar;
   impl_->info.inset = a.inset;
   impl_->info.panels = a.panels;
+  impl_->scene_scratch.sprites = std::move(sc.sprites);
+  impl_->scene_scratch.shade = std::move(sc.shade);
   return img;
+}
+
+void Renderer::recycle(Image&& done) {
+  impl_->spare = std::move(done.rgba);
+  done = Image{};
 }
 
 Image Renderer::draw(const Scene& sc) {
@@ -492,8 +619,18 @@ Image Renderer::draw(const Scene& sc) {
                       std::max(width, height) + 2 * margin <= m.max_size;
   const int pad = points ? margin : 0;
 
+  // Every pixel is written below, so a recycled picture is not cleared first.
+  auto picture = [&] {
+    Image img;
+    img.width = width;
+    img.height = height;
+    img.rgba = std::move(m.spare);
+    m.spare = {};
+    img.rgba.resize(static_cast<std::size_t>(width) * height * 4);
+    return img;
+  };
   if (splat) {  // nothing for GL to do: the background, then the discs, all on the CPU
-    Image img(width, height);
+    Image img = picture();
     const std::uint8_t bg[4] = {pal.background[0], pal.background[1], pal.background[2], 255};
     splat_discs(img, bg, sc.sprites, cam.pixels_per_unit(), m.splat);
     return img;
@@ -552,7 +689,7 @@ Image Renderer::draw(const Scene& sc) {
     gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m.resolve_fbo);
   }
-  Image img(width, height);
+  Image img = picture();
   m.readback.resize(img.rgba.size());
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl.ReadPixels(pad, pad, width, height, GL_RGBA, GL_UNSIGNED_BYTE, m.readback.data());

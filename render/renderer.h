@@ -49,6 +49,10 @@ class Renderer {
   Scene scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view);
   Image draw(const Scene& scene);
 
+  // Hands back a picture the caller is done with, so that the next one reuses its memory (an
+  // 8 MB 1080p picture on fresh pages costs a frame about 2000 page faults). Optional.
+  void recycle(Image&& done);
+
   const RenderInfo& last() const;
   // Largest width or height this context can render (and at most 16384).
   int max_size() const;

@@ -107,7 +107,7 @@ void check_style(const Style& style) {
 }
 
 Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view,
-                  OverlayPainter& painter) {
+                  OverlayPainter& painter, SceneScratch* scratch) {
   check_style(style);
   GS_CHECK(!snaps.empty());
   Scene sc;
@@ -121,13 +121,16 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   const bool overlay = sc.overlay = snaps.size() > 1;
   const Palette pal = sc.palette = palette(style.background);
 
+  SceneScratch own;
+  SceneScratch& keep = scratch ? *scratch : own;
   // Colours need the field only for a single snapshot; the overlay colours by time.
-  std::vector<double> values;
+  std::vector<double>& values = keep.values;
+  values.clear();
   if (!overlay) {
     const Snapshot& s = *snaps.front();
-    values = field_values(s, style.field, &sc.v_rms, style.column);
-    std::vector<std::uint8_t> mask = s.active;
-    if (!any_active(s)) mask.assign(s.size(), 1);
+    field_values(s, style.field, &sc.v_rms, style.column, values);
+    const std::vector<std::uint8_t> all(any_active(s) ? 0 : s.size(), 1);
+    const auto& mask = any_active(s) ? s.active : all;
     const auto fixed = style.range_per_frame ? std::nullopt : default_range(style.field, dim);
     sc.range = style.range ? *style.range
                : fixed     ? *fixed
@@ -257,6 +260,10 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   };
   std::size_t most = 0;
   for (const Snapshot* s : snaps) most += s->size();
+  sc.sprites = std::move(keep.sprites);
+  sc.shade = std::move(keep.shade);
+  sc.sprites.clear();
+  sc.shade.clear();
   sc.sprites.reserve(most);
   sc.shade.reserve(most);
   const float none = std::nanf("");
@@ -283,13 +290,14 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   auto in_order = [&](std::size_t n, auto&& visit) {
     constexpr std::size_t kParticlesPerThread = 50000;
     const int threads = frame_threads(n, kParticlesPerThread);
-    struct Piece {
-      std::vector<Sprite> sprites;
-      std::vector<float> shade;
-      std::vector<Eigen::Vector3d> band_x;
-      std::vector<double> band_v;
-    };
-    std::vector<Piece> pieces(threads - 1);
+    auto& pieces = keep.pieces;
+    if (pieces.size() < static_cast<std::size_t>(threads - 1)) pieces.resize(threads - 1);
+    for (auto& p : pieces) {
+      p.sprites.clear();
+      p.shade.clear();
+      p.band_x.clear();
+      p.band_v.clear();
+    }
     run_on_threads(threads, [&](int t) {
       const auto [first, last] = piece(n, threads, t);
       if (t == 0) {
@@ -297,13 +305,14 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
         for (std::size_t i = first; i < last; ++i) visit(out, i);
         return;
       }
-      Piece& mine = pieces[t - 1];
+      SceneScratch::Piece& mine = pieces[t - 1];
       mine.sprites.reserve(last - first);
       mine.shade.reserve(last - first);
       Out out{mine.sprites, mine.shade, mine.band_x, mine.band_v};
       for (std::size_t i = first; i < last; ++i) visit(out, i);
     });
-    for (const Piece& p : pieces) {
+    for (int t = 1; t < threads; ++t) {
+      const SceneScratch::Piece& p = pieces[t - 1];
       sc.sprites.insert(sc.sprites.end(), p.sprites.begin(), p.sprites.end());
       sc.shade.insert(sc.shade.end(), p.shade.begin(), p.shade.end());
       band_x.insert(band_x.end(), p.band_x.begin(), p.band_x.end());

@@ -8,6 +8,7 @@
 #include "render/colormap.h"
 #include "render/contrast.h"
 #include "render/field.h"
+#include "render/frame_threads.h"
 #include "render/image_compare.h"
 #include "render/renderer.h"
 #include "sim/engine.h"
@@ -337,6 +338,38 @@ TEST(RenderStructure, CpuSplatsMatchGlDiscs) {
     const auto c = compare_images(b, a);
     EXPECT_TRUE(c.match()) << "worst blob " << c.largest.pixels << " px, mass " << c.largest.mass;
   }
+}
+
+// A frame big enough to be built and splatted on several threads is the same bytes on one,
+// two or three (pieces of the particles kept in order, bands partitioning the pixels).
+TEST(RenderStructure, BigFramesDoNotDependOnTheThreads) {
+  Snapshot s = empty_snapshot(2, 600, 10);
+  std::uint64_t x = 12345;
+  auto next = [&] {  // a small LCG: the test needs no particular distribution
+    x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(x >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const Eigen::Vector3d p(600 * next(), 600 * next(), 0);
+    const double r = (p - Eigen::Vector3d(300, 300, 0)).norm();
+    add(s, p, {next(), next(), 0}, r > 150 && r < 200);
+  }
+  Style st;
+  st.show_inactive = true;
+  st.inset = true;
+  View v = small_view(1280, 720);
+  v.framing = Framing::Box;
+  std::vector<Image> pictures;
+  for (int threads : {1, 2, 3}) {
+    frame_thread_limit = threads;
+    pictures.push_back(renderer().render(s, st, v));
+  }
+  frame_thread_limit = 0;
+  EXPECT_TRUE(pictures[0].rgba == pictures[1].rgba);
+  EXPECT_TRUE(pictures[0].rgba == pictures[2].rgba);
+  // The discs are drawn (not only the background and the overlays).
+  const Image none = renderer().render(empty_snapshot(2, 600, 10), st, v);
+  EXPECT_GT(compare_images(none, pictures[0]).differing, 1000);
 }
 
 // A dense cube seen whole: occlusion culling must drop most spheres and change no pixel that

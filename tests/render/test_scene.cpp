@@ -63,6 +63,21 @@ double rms_of_active(const Snapshot& s) {
   return std::sqrt(sum / n);
 }
 
+// One speed written to six decimals (a ring of one speed) varies by round-off only: that is one
+// colour, not the whole colour map stretched over the noise. A real spread of 1% keeps its range.
+TEST(FieldRange, RoundOffSpreadIsOneValueAndARealSpreadIsKept) {
+  const std::vector<std::uint8_t> all(3, 1);
+  for (Scale scale : {Scale::Linear, Scale::Log}) {
+    const auto [lo, hi] = auto_range({0.999999, 1.0, 1.000001}, all, scale, 0, 100);
+    EXPECT_LT(normalise(0.999999, {lo, hi}, scale), 0.51);
+    EXPECT_GT(normalise(1.000001, {lo, hi}, scale), 0.49);
+    EXPECT_GT(hi / lo, 1.05);  // the colour bar's labels can tell its ends apart
+    const auto kept = auto_range({0.995, 1.0, 1.005}, all, scale, 0, 100);
+    EXPECT_DOUBLE_EQ(kept.first, 0.995);
+    EXPECT_DOUBLE_EQ(kept.second, 1.005);
+  }
+}
+
 // A frame without a time (LAMMPS without ITEM: TIME, HOOMD) is labelled by its step.
 TEST(Scene, FramesWithoutTimeAreLabelledByStep) {
   Snapshot s = ring(2, 1);
