@@ -18,8 +18,10 @@ namespace gs::py {
 namespace {
 
 render::Renderer& renderer_for(render::Backend backend) {
-  static std::map<render::Backend, std::unique_ptr<render::Renderer>> renderers;
-  auto& r = renderers[backend];
+  // Never destroyed: at interpreter exit the GL library may be torn down before static
+  // destructors run (an exit-time crash seen once under ctest); the OS reclaims the context.
+  static auto* renderers = new std::map<render::Backend, std::unique_ptr<render::Renderer>>;
+  auto& r = (*renderers)[backend];
   if (!r) r = std::make_unique<render::Renderer>(backend);
   return *r;
 }
