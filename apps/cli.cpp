@@ -224,18 +224,22 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
   sub.add_option_function<std::string>(
          "--initial",
          [&c](const std::string& v) {
-           if (v != "kick" && v != "thermal")
-             throw CLI::ValidationError("--initial", "'" + v + "' is not kick or thermal");
-           c.initial = v == "kick" ? Initial::Kick : Initial::Thermal;
+           try {
+             c.initial = parse_initial(v);
+           } catch (const UserError& e) {
+             throw CLI::ValidationError(e.what());
+           }
          },
          "kick: one particle moves; thermal: a Maxwell gas")
       ->option_text("kick|thermal (kick)");
   sub.add_option_function<std::string>(
          "--kick-site",
          [&c](const std::string& v) {
-           if (v != "random" && v != "centre")
-             throw CLI::ValidationError("--kick-site", "'" + v + "' is not random or centre");
-           c.kick_site = v == "random" ? KickSite::Random : KickSite::Centre;
+           try {
+             c.kick_site = parse_kick_site(v);
+           } catch (const UserError& e) {
+             throw CLI::ValidationError(e.what());
+           }
          },
          "Which particle is kicked: random or the one nearest the centre")
       ->option_text("random|centre (random)");

@@ -10,23 +10,16 @@
 #include "render/colormap.h"
 #include "render/field.h"
 #include "render/png.h"
+#include "render/render_choices.h"
 #include "render/renderer.h"
 #include "sim/error.h"
-#include "sim/format.h"
 
 namespace gs::app {
 
 void add_render_command(CLI::App& app) {
-  struct Options {
+  struct Options : render::RenderChoices {
     std::vector<std::string> inputs;
     std::string out;
-    render::Style style;
-    render::View view;
-    std::vector<double> range, percentiles, centre;
-    std::string colormap = "magma", colour_by = "auto", background = "light", scale = "auto";
-    std::string framing = "fit", backend = "auto";
-    bool no_colorbar = false, no_time = false, no_legend = false;
-    bool inset = false, no_inset = false;
     int compression = 1;
     long long frame = 0;
     ReadOptions read;
@@ -99,9 +92,6 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--fov", opt->view.fov, "3D: vertical field of view, degrees")
       ->capture_default_str();
-  // The default of `movie` and of a run's pictures too: a kick's shell is hollow, so drawn whole
-  // it shows only its outer skin; the slab shows the band itself.
-  opt->view.slab = 6;
   sub->add_option("--slab", opt->view.slab,
                   "3D: keep a slab this thick through the centre, facing the camera (0: all)")
       ->capture_default_str();
@@ -124,70 +114,24 @@ void add_render_command(CLI::App& app) {
 
   sub->callback([opt] {
     auto& o = *opt;
-    auto& st = o.style;
-    st.colormap = o.colormap;
-    // An unknown field is reported once the snapshot is read, with the fields it has.
-    for (render::Field f : render::all_fields())
-      if (o.colour_by == render::field_name(f)) st.field = f;
-    st.background = render::parse_background(o.background);
-    st.scale = render::parse_scale(o.scale, st.field);
-    if (!o.range.empty()) st.range = std::pair{o.range[0], o.range[1]};
-    if (!o.percentiles.empty())
-      st.percentile_low = o.percentiles[0], st.percentile_high = o.percentiles[1];
-    st.colorbar = !o.no_colorbar;
-    st.time_label = !o.no_time;
-    st.legend = !o.no_legend;
-    if (o.framing == "fit")
-      o.view.framing = render::Framing::Fit;
-    else if (o.framing == "box")
-      o.view.framing = render::Framing::Box;
-    else
-      throw UsageError("unknown --framing '" + o.framing + "' (use fit or box)");
-    if (!o.centre.empty())
-      o.view.centre =
-          Eigen::Vector3d(o.centre[0], o.centre[1], o.centre.size() > 2 ? o.centre[2] : 0);
-    if (!(o.view.zoom > 0)) throw UsageError("--zoom must be positive");
-    if (!(o.view.fov > 0 && o.view.fov < 180)) throw UsageError("--fov must be between 0 and 180");
-    if (o.view.slab < 0 || o.view.distance < 0)
-      throw UsageError("--slab and --distance must be >= 0");
-    if (o.inset && o.no_inset) throw UsageError("--inset and --no-inset exclude each other");
     // Everything the user typed is checked before any file is read or GL context made.
-    render::check_size(o.view.width, o.view.height, 16384);
-    render::check_style(st);
-    const auto backend = render::parse_backend(o.backend);
-
+    const auto backend = render::settle_choices(o);
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
     for (const auto& path : o.inputs) snaps.push_back(read_snapshot(path, o.read, o.frame));
-    // A run's own snapshot (it names its seed) is drawn as the run drew it: with the inset.
-    st.inset = o.inset || (!o.no_inset && snaps.front().info.seed.has_value());
-    // One snapshot is coloured by a field (several by time): the first file read decides what
-    // "auto" means, and names what it lacks.
-    if (snaps.size() == 1) {
-      st.field = render::choose_field(o.colour_by, snaps.front(), o.inputs.front());
-      if (st.field == render::Field::Column) st.column = o.colour_by;
-      st.scale = render::parse_scale(o.scale, st.field);
-      render::check_style(st);
-    }
+    std::vector<const Snapshot*> ptrs;
+    for (const auto& s : snaps) ptrs.push_back(&s);
+    render::settle_for_snapshots(o, ptrs, o.inputs.front());
     // What the readers assumed where the files say nothing, each sentence once.
     std::set<std::string> said;
     for (std::size_t k = 0; k < snaps.size(); ++k)
       for (const auto& note : snaps[k].notes)
         if (said.insert(note).second)
           std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs[k].c_str(), note.c_str());
-    std::vector<const Snapshot*> ptrs;
-    for (const auto& s : snaps) ptrs.push_back(&s);
 
     render::Renderer renderer(backend);
-    const render::Image img = renderer.render(ptrs, st, o.view);
-    auto text = render::png_text(snaps.front().info, snaps.front().size());
-    if (snaps.size() > 1) {
-      std::string times;
-      for (const auto& s : snaps) times += (times.empty() ? "" : ",") + format_double(s.info.time);
-      for (auto& [k, v] : text)
-        if (k == "Time") v = times;
-    }
-    render::write_png(o.out, img, text, o.compression);
+    const render::Image img = renderer.render(ptrs, o.style, o.view);
+    render::write_png(o.out, img, render::png_text(ptrs), o.compression);
   });
 }
 

@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <new>
 
 #include "sim/error.h"
 #include "sim/format.h"
@@ -74,6 +76,26 @@ bool read_text(std::FILE* f, PngText* out, std::string* why) {
   return true;
 }
 
+// The text chunks and row pointers libpng takes, pointing into `text` and `img`.
+struct PngInput {
+  std::vector<::png_text> chunks;
+  std::vector<png_bytep> rows;
+  PngInput(const Image& img, const PngText& text) : chunks(text.size()), rows(img.height) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
+      chunks[i].key = const_cast<char*>(text[i].first.c_str());
+      chunks[i].text = const_cast<char*>(text[i].second.c_str());
+      chunks[i].text_length = text[i].second.size();
+    }
+    for (int y = 0; y < img.height; ++y)
+      rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(img.pixel(0, y));
+  }
+  bool write(std::FILE* f, const Image& img, int level, std::string* why) {
+    return write_file(f, img, chunks.data(), static_cast<int>(chunks.size()), rows.data(), level,
+                      why);
+  }
+};
+
 }  // namespace
 
 void write_png(const std::string& path, const Image& img, const PngText& text,
@@ -85,19 +107,8 @@ void write_png(const std::string& path, const Image& img, const PngText& text,
   {
     File f{std::fopen(tmp.c_str(), "wb")};
     if (!f.f) throw UserError("cannot write PNG '" + path + "': cannot create a file there");
-    std::vector<::png_text> chunks(text.size());
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
-      chunks[i].key = const_cast<char*>(text[i].first.c_str());
-      chunks[i].text = const_cast<char*>(text[i].second.c_str());
-      chunks[i].text_length = text[i].second.size();
-    }
-    std::vector<png_bytep> rows(static_cast<std::size_t>(img.height));
-    for (int y = 0; y < img.height; ++y)
-      rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(img.pixel(0, y));
-    if (!write_file(f.f, img, chunks.data(), static_cast<int>(chunks.size()), rows.data(),
-                    compression_level, &why) &&
-        why.empty())
+    PngInput input(img, text);
+    if (!input.write(f.f, img, compression_level, &why) && why.empty())
       why = "libpng error";
     if (why.empty() && std::fflush(f.f) != 0) why = "write failed (disk full?)";
     if (std::fclose(f.f) != 0 && why.empty()) why = "write failed (disk full?)";
@@ -112,6 +123,39 @@ void write_png(const std::string& path, const Image& img, const PngText& text,
     std::filesystem::remove(tmp, ec);
     throw UserError("cannot write PNG '" + path + "': " + why);
   }
+}
+
+std::vector<std::uint8_t> encode_png(const Image& img, const PngText& text,
+                                     int compression_level) {
+  GS_CHECK(img.width > 0 && img.height > 0 &&
+           img.rgba.size() == static_cast<std::size_t>(img.width) * img.height * 4);
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* f = ::open_memstream(&buffer, &size);
+  if (f == nullptr) throw std::bad_alloc();
+  std::string why;
+  PngInput input(img, text);
+  const bool ok = input.write(f, img, compression_level, &why);
+  std::fclose(f);  // sets buffer and size
+  std::vector<std::uint8_t> out(buffer, buffer + size);
+  std::free(buffer);
+  if (!ok) throw UserError("cannot encode PNG: " + (why.empty() ? "libpng error" : why));
+  return out;
+}
+
+PngText png_text(const std::vector<const Snapshot*>& snaps) {
+  GS_CHECK(!snaps.empty());
+  PngText text = png_text(snaps.front()->info, snaps.front()->size());
+  if (snaps.size() > 1) {
+    std::string times;
+    for (const Snapshot* s : snaps) {
+      if (!times.empty()) times += ',';
+      times += format_double(s->info.time);
+    }
+    for (auto& [k, v] : text)
+      if (k == "Time") v = times;
+  }
+  return text;
 }
 
 Image read_png(const std::string& path) {

@@ -14,10 +14,15 @@ packages=(
   libosmesa6-dev libegl-dev libgl-dev libpng-dev zlib1g-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
+  python3-dev python3-numpy pybind11-dev python3-pybind11
 )
 # Optional for users, installed for the tests so that CI runs them: MPI ensembles; ASE, gsd
-# and LAMMPS reading and writing snapshot files with ours (tests/io/test_interop.cpp).
-if [ "$mode" = test ]; then packages+=(libopenmpi-dev openmpi-bin python3-ase python3-gsd lammps); fi
+# and LAMMPS reading and writing snapshot files with ours (tests/io/test_interop.cpp); pytest,
+# matplotlib and Jupyter for the Python module's tests and its notebook (tests/python).
+if [ "$mode" = test ]; then
+  packages+=(libopenmpi-dev openmpi-bin python3-ase python3-gsd lammps)
+  packages+=(python3-pytest python3-matplotlib jupyter-nbconvert python3-ipykernel)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -144,6 +144,17 @@ const char* to_string(KickSite k) {
   return k == KickSite::Random ? "random" : "centre";
 }
 
+Initial parse_initial(const std::string& word) {
+  if (word != "kick" && word != "thermal")
+    throw UserError("--initial: '" + word + "' is not kick or thermal");
+  return word == "kick" ? Initial::Kick : Initial::Thermal;
+}
+KickSite parse_kick_site(const std::string& word) {
+  if (word != "random" && word != "centre")
+    throw UserError("--kick-site: '" + word + "' is not random or centre");
+  return word == "random" ? KickSite::Random : KickSite::Centre;
+}
+
 std::string to_toml(const PhysicsConfig& c) {
   std::ostringstream o;
   o << "dim = " << c.dim << "\n";

@@ -56,5 +56,9 @@ std::string to_toml(const PhysicsConfig& c);
 
 const char* to_string(Initial i);
 const char* to_string(KickSite k);
+// The words of --initial (kick|thermal) and --kick-site (random|centre); UserError otherwise,
+// "--initial: 'WORD' is not kick or thermal", the message the command line gives.
+Initial parse_initial(const std::string& word);
+KickSite parse_kick_site(const std::string& word);
 
 }  // namespace gs

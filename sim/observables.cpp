@@ -111,6 +111,12 @@ Shape measure_shape(const Snapshot& s) {
   return sh;
 }
 
+double kinetic_energy(const Snapshot& s) {
+  double e = 0;
+  for (const auto& v : s.velocity) e += 0.5 * v.squaredNorm();
+  return e;
+}
+
 Snapshot active_subset(const Snapshot& s) {
   checked_dim(s);
   Snapshot a;

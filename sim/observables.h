@@ -39,6 +39,9 @@ Shape measure_shape(const Snapshot& s);
 // distinct positions), where no shape exists.
 double anisotropy_index(int dim, const Eigen::Vector3d& eigenvalues);
 
+// E_t: the kinetic energy of every particle (unit masses); 0 for a snapshot without velocities.
+double kinetic_energy(const Snapshot& s);
+
 // The active particles of `s` alone, in their order, with s.info. Every measure but the band
 // packing looks at active particles only; at 2e6 spheres they are a few per cent of the snapshot,
 // scattered through it, and measuring them from this copy reads the big arrays once instead of

@@ -1,0 +1,139 @@
+"""grainshock: the kicked granular gas of Jabeen, Rajesh and Ray (EPL 2010) from Python.
+
+The engine, the snapshot readers, the observables, the renderer, the movie encoder and the
+golden-image comparison of the `grainshock` command, over the same C++ libraries:
+
+    import grainshock as gs
+    sim = gs.Simulation(dim=2, particles=20000, restitution=0.1, seed=1)
+    sim.run_until(1000)
+    snap = sim.snapshot()             # the active particles, numpy arrays
+    gs.observables(snap)["radius_rms"]
+    gs.render(snap).save("t1000.png") # the pixels of `grainshock render`
+
+Wrong inputs raise ValueError with the command line's one-line message.
+"""
+from __future__ import annotations
+
+from . import _grainshock as _c
+from ._grainshock import (Comparison, Image, Simulation, Snapshot, band_packing, compare,
+                          frame_count, inner_edge_speed, observables, radial_distribution,
+                          radial_profile, read, scaled_radial_distribution,
+                          scaled_speed_distribution, speed_distribution, ensemble)
+
+__all__ = [
+    "Comparison", "Image", "Movie", "Simulation", "Snapshot", "band_packing", "compare", "ensemble",
+    "frame_count", "from_ase", "inner_edge_speed", "observables", "radial_distribution",
+    "radial_profile", "read", "render", "scaled_radial_distribution",
+    "scaled_speed_distribution", "speed_distribution", "to_ase",
+]
+
+
+def render(snapshots, *, color_by="auto", width=1920, height=1080, inset=None, **options):
+    """Draws a Snapshot (or a list of them: the Fig. 1(a) overlay, one colour per time).
+
+    The arguments are the flags of `grainshock render` (dashes become underscores) and give the
+    same pixels: color_by ("auto", "scaled-speed", "speed", "scaled-radial-velocity",
+    "radial-velocity", "first-collision", "none" or a column name), width, height,
+    inset (None: as the command decides, True/False: --inset/--no-inset), colormap, background
+    ("light"/"dark"), scale ("auto"/"lin"/"log"), range (MIN, MAX), percentiles (LOW, HIGH),
+    range_per_frame, framing ("fit"/"box"), centre, zoom, azimuth, elevation, distance, fov,
+    slab, clip, show_inactive, colorbar, time_label, legend, scale_bar, msaa, font, backend.
+    Returns an Image (.array, .save(path); a notebook shows it).
+    """
+    return _c._render(snapshots, color_by=color_by, width=width, height=height, inset=inset,
+                      **options)
+
+
+class Movie:
+    """An MP4 (or .mkv, ...) written with the encoder of `grainshock movie`.
+
+        with grainshock.Movie("blast.mp4", fps=30) as m:
+            for t in times:
+                sim.run_until(t)
+                m.add(sim.snapshot())
+
+    add() takes a Snapshot (drawn with the render options given here, at the movie's size) or
+    an Image of the movie's size. The file appears complete when the block ends, and not at all
+    if it ends with an exception.
+    """
+
+    def __init__(self, path, *, fps=30.0, width=1920, height=1080, codec="h264", crf=18,
+                 preset="veryfast", **render_options):
+        self.path = str(path)
+        self._writer = _c._MovieWriter(self.path, width, height, fps=fps, codec=codec, crf=crf,
+                                       preset=preset)
+        self._size = (width, height)
+        self._render = render_options
+        self._closed = False
+
+    def add(self, frame):
+        """Appends one frame: a Snapshot (rendered) or an Image of the movie's size."""
+        if isinstance(frame, Snapshot):
+            frame = render(frame, width=self._size[0], height=self._size[1], **self._render)
+        if self._closed:
+            raise ValueError("Movie.add: the movie is finished")
+        self._writer.add(frame, *self._size)
+
+    @property
+    def frames(self) -> int:
+        """Frames added so far."""
+        return self._writer.frames
+
+    def close(self):
+        """Finishes the file (idempotent)."""
+        self._closed = True
+        self._writer.finish()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, value, traceback):
+        self._closed = True
+        if kind is None:
+            self._writer.finish()
+        else:
+            self._writer.discard()
+        return False
+
+
+def to_ase(snapshot):
+    """An ase.Atoms of the snapshot (needs ASE): positions (z = 0 in 2D), velocities, the box as
+    the cell with pbc on the snapshot's axes, radius and active as per-atom arrays."""
+    import ase
+    import numpy as np
+
+    n, d = len(snapshot), snapshot.dim
+    positions = np.zeros((n, 3))
+    positions[:, :d] = snapshot.positions
+    cell = np.zeros(3)
+    cell[:d] = snapshot.box
+    atoms = ase.Atoms(numbers=np.zeros(n, dtype=int), positions=positions, cell=cell,
+                      pbc=[k < d and cell[k] > 0 for k in range(3)])
+    atoms.set_masses(np.ones(n))  # the engine's unit masses
+    if snapshot.velocities is not None:
+        velocities = np.zeros((n, 3))
+        velocities[:, :d] = snapshot.velocities
+        atoms.set_velocities(velocities)
+    atoms.new_array("radius", np.array(snapshot.radius))
+    atoms.new_array("active", np.array(snapshot.active, dtype=int))
+    atoms.info["time"] = snapshot.time
+    atoms.info["dim"] = d
+    return atoms
+
+
+def from_ase(atoms, *, dim=None, time=None):
+    """A Snapshot of an ase.Atoms: positions, velocities (from momenta and masses), the cell's
+    diagonal as the box; dim as atoms.info['dim'], else 2 when every z is 0, else 3."""
+    import numpy as np
+
+    positions = atoms.get_positions()
+    if dim is None:
+        dim = int(atoms.info.get("dim", 2 if np.all(positions[:, 2] == 0) else 3))
+    velocities = atoms.get_velocities() if atoms.has("momenta") else None
+    extra = {k: atoms.arrays[k] for k in ("radius", "active") if k in atoms.arrays}
+    return Snapshot.from_arrays(
+        positions[:, :dim],
+        velocities=None if velocities is None else velocities[:, :dim],
+        radius=extra.get("radius"), active=extra.get("active"),
+        box=np.diag(atoms.get_cell().array)[:dim] if atoms.cell.rank else None,
+        time=atoms.info.get("time") if time is None else time, dim=dim)

@@ -1,0 +1,54 @@
+#include "render/render_choices.h"
+
+#include "render/field.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "sim/error.h"
+
+namespace gs::render {
+
+Backend settle_choices(RenderChoices& c) {
+  Style& st = c.style;
+  View& view = c.view;
+  st.colormap = c.colormap;
+  // An unknown field is reported once the snapshot is read, with the fields it has.
+  for (Field f : all_fields())
+    if (c.colour_by == field_name(f)) st.field = f;
+  st.background = parse_background(c.background);
+  st.scale = parse_scale(c.scale, st.field);
+  if (!c.range.empty()) st.range = std::pair{c.range[0], c.range[1]};
+  if (!c.percentiles.empty())
+    st.percentile_low = c.percentiles[0], st.percentile_high = c.percentiles[1];
+  st.colorbar = !c.no_colorbar;
+  st.time_label = !c.no_time;
+  st.legend = !c.no_legend;
+  if (c.framing == "fit")
+    view.framing = Framing::Fit;
+  else if (c.framing == "box")
+    view.framing = Framing::Box;
+  else
+    throw UsageError("unknown --framing '" + c.framing + "' (use fit or box)");
+  if (!c.centre.empty())
+    view.centre = Eigen::Vector3d(c.centre[0], c.centre[1], c.centre.size() > 2 ? c.centre[2] : 0);
+  if (!(view.zoom > 0)) throw UsageError("--zoom must be positive");
+  if (!(view.fov > 0 && view.fov < 180)) throw UsageError("--fov must be between 0 and 180");
+  if (view.slab < 0 || view.distance < 0) throw UsageError("--slab and --distance must be >= 0");
+  if (c.inset && c.no_inset) throw UsageError("--inset and --no-inset exclude each other");
+  check_size(view.width, view.height, 16384);
+  check_style(st);
+  return parse_backend(c.backend);
+}
+
+void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& snaps,
+                          const std::string& first_file) {
+  Style& st = c.style;
+  st.inset = c.inset || (!c.no_inset && snaps.front()->info.seed.has_value());
+  if (snaps.size() == 1) {
+    st.field = choose_field(c.colour_by, *snaps.front(), first_file);
+    if (st.field == Field::Column) st.column = c.colour_by;
+    st.scale = parse_scale(c.scale, st.field);
+    check_style(st);
+  }
+}
+
+}  // namespace gs::render

@@ -1,0 +1,43 @@
+#pragma once
+// The choices of `grainshock render` in the words its flags take (colour field, scale, framing,
+// range, ...), checked and turned into a Style and a View. The command and the Python module's
+// render() both go through here, so the same words draw the same pixels.
+#include <string>
+#include <vector>
+
+#include "render/gl_context.h"
+#include "render/style.h"
+#include "render/view.h"
+#include "sim/snapshot.h"
+
+namespace gs::render {
+
+struct RenderChoices {
+  std::string colormap = "magma", colour_by = "auto", background = "light", scale = "auto";
+  std::string framing = "fit", backend = "auto";
+  std::vector<double> range, percentiles, centre;  // empty: not given
+  bool no_colorbar = false, no_time = false, no_legend = false;
+  bool inset = false, no_inset = false;
+  // Filled by settle_choices() from the words above; the fields without a word (range per frame,
+  // show inactive, scale bar, msaa, font, width, height, zoom, the 3D camera) are set directly.
+  Style style;
+  // A kick's shell is hollow, so drawn whole it shows only its outer skin; the slab shows the
+  // band itself (the default of `movie` and of a run's pictures too).
+  View view = [] {
+    View v;
+    v.slab = 6;
+    return v;
+  }();
+};
+
+// Checks every word and number before any file is read or GL context made (UserError naming
+// the flag) and fills c.style and c.view from them; returns the GL backend asked for.
+Backend settle_choices(RenderChoices& c);
+
+// What depends on the snapshots drawn: the inset is on for a run's own snapshot (it names its
+// seed) unless --no-inset, and one snapshot is coloured by the field `colour_by` names ("auto"
+// decided by the first snapshot, a name it lacks refused naming `first_file`).
+void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& snaps,
+                          const std::string& first_file);
+
+}  // namespace gs::render
