@@ -37,7 +37,7 @@ def test_render_is_byte_identical_to_the_command(snapshot_file, tmp_path, flags,
 def test_render_refuses_what_the_command_refuses(snapshot_file, tmp_path):
     snap = gs.read(snapshot_file)
     cli = run_command("render", snapshot_file, "--out", tmp_path / "x.png", "--color-by", "mass")
-    assert cli.returncode == 1
+    assert cli.returncode == 2  # a --color-by the snapshot lacks: a usage error (README exit codes)
     with pytest.raises(ValueError) as e:
         gs.render(snap, color_by="mass")
     # The same sentence, naming the file there and "the snapshot" here.
