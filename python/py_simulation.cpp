@@ -14,7 +14,6 @@
 #include "sim/config.h"
 #include "sim/engine.h"
 #include "sim/error.h"
-#include "sim/observables.h"
 
 namespace gs::py {
 namespace {
@@ -203,8 +202,10 @@ chunks of events, leaving a valid simulation at the time reached.)")
             auto snap = std::make_shared<Snapshot>();
             {
               pb::gil_scoped_release release;
-              s.sim().snapshot(*snap);
-              if (active_only) *snap = active_subset(*snap);
+              if (active_only)
+                s.sim().active_snapshot(*snap);
+              else
+                s.sim().snapshot(*snap);
             }
             return snap;
           },

@@ -525,7 +525,7 @@ void Engine<D>::active_positions(std::vector<Eigen::Vector3d>& out) const {
 }
 
 template <int D>
-void Engine<D>::snapshot(Snapshot& s) const {
+void Engine<D>::snapshot_info(Snapshot& s) const {
   s.info = {};
   s.info.dim = D;
   s.info.set_cubic_box(grid_.box());
@@ -538,6 +538,11 @@ void Engine<D>::snapshot(Snapshot& s) const {
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;
   s.info.seed = config_.seed;
+}
+
+template <int D>
+void Engine<D>::snapshot(Snapshot& s) const {
+  snapshot_info(s);
   const std::size_t n = kin_.size();
   s.position.resize(n);
   s.velocity.resize(n);
@@ -553,6 +558,29 @@ void Engine<D>::snapshot(Snapshot& s) const {
     s.velocity[t].template head<D>() = kin_[i].v;
     s.active[t] = kin_[i].active;
     s.first_collision[t] = first_collision_[i];
+  }
+}
+
+template <int D>
+void Engine<D>::active_snapshot(Snapshot& s) const {
+  snapshot_info(s);
+  std::vector<std::int32_t> active;
+  for (std::int32_t i : moved_)
+    if (kin_[i].active) active.push_back(i);
+  // snapshot()'s order is the initial state's (tag_), which active_subset keeps.
+  std::sort(active.begin(), active.end(),
+            [&](std::int32_t a, std::int32_t b) { return tag_[a] < tag_[b]; });
+  const std::size_t n = active.size();
+  s.position.assign(n, Eigen::Vector3d::Zero());
+  s.velocity.assign(n, Eigen::Vector3d::Zero());
+  s.radius.assign(n, 0.5);
+  s.active.assign(n, 1);
+  s.first_collision.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t i = active[k];
+    s.position[k].template head<D>() = position(i);
+    s.velocity[k].template head<D>() = kin_[i].v;
+    s.first_collision[k] = first_collision_[i];
   }
 }
 

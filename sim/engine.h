@@ -74,6 +74,9 @@ class Simulation {
     snapshot(s);
     return s;
   }
+  // The active particles only, in the order snapshot() gives them (active_subset of it, to the
+  // bit), at the cost of the particles that have moved: those at rest are never visited.
+  virtual void active_snapshot(Snapshot& out) const = 0;
   // Unwrapped positions of the active particles, in no set order: what the front radius needs at
   // every sample of an ensemble without copying a whole snapshot (the particles at rest cost
   // nothing).
@@ -104,6 +107,7 @@ class Engine final : public Simulation {
   Sample sample() const override;
   void snapshot(Snapshot& s) const override;
   using Simulation::snapshot;
+  void active_snapshot(Snapshot& s) const override;
   void active_positions(std::vector<Eigen::Vector3d>& out) const override;
   const EngineStats& stats() const override { return stats_; }
   double max_overlap_now() const override;
@@ -141,6 +145,7 @@ class Engine final : public Simulation {
   void sort_by_cell(InitialState<D>& init);
   void mark_moving(std::int32_t i);
   void mark_active(std::int32_t i);
+  void snapshot_info(Snapshot& s) const;  // the header every snapshot shares
   void cell_insert(std::int32_t i, std::int32_t cell);
   void cell_remove(std::int32_t i, std::int32_t cell);
 

@@ -5,6 +5,7 @@
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/initial.h"
+#include "sim/observables.h"
 #include "tests/sim/thermal_config.h"
 
 namespace gs {
@@ -130,6 +131,32 @@ TEST(Engine, SameSeedSameHistoryOtherSeedOther) {
   EXPECT_EQ(a->sample().energy, b->sample().energy);  // bit for bit
   EXPECT_EQ(a->sample().radius_rms, b->sample().radius_rms);
   EXPECT_NE(a->sample().energy, other->sample().energy);
+}
+
+// active_snapshot visits only the particles that have moved, and must give active_subset of the
+// whole snapshot to the bit (same order, same header), in 2D and 3D.
+TEST(Engine, ActiveSnapshotIsTheActiveSubsetOfTheSnapshot) {
+  for (int dim : {2, 3}) {
+    PhysicsConfig c;
+    c.dim = dim;
+    c.particles = 20000;
+    c.restitution = 0.5;
+    auto sim = make_simulation(c);
+    sim->run_until(300);
+    const Snapshot all = active_subset(sim->snapshot());
+    Snapshot active;
+    sim->active_snapshot(active);
+    ASSERT_GT(active.size(), 10u);
+    ASSERT_EQ(active.size(), all.size());
+    EXPECT_EQ(active.info.time, all.info.time);
+    EXPECT_EQ(active.info.step, all.info.step);
+    EXPECT_EQ(active.info.box, all.info.box);
+    EXPECT_EQ(active.position, all.position);
+    EXPECT_EQ(active.velocity, all.velocity);
+    EXPECT_EQ(active.radius, all.radius);
+    EXPECT_EQ(active.active, all.active);
+    EXPECT_EQ(active.first_collision, all.first_collision);
+  }
 }
 
 TEST(Engine, ParticlesAtRestHaveNoEvents) {
