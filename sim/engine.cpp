@@ -7,6 +7,7 @@
 
 #include "sim/collision.h"
 #include "sim/error.h"
+#include "sim/huge_pages.h"
 #include "sim/observables.h"
 
 namespace gs {
@@ -544,6 +545,10 @@ template <int D>
 void Engine<D>::snapshot(Snapshot& s) const {
   snapshot_info(s);
   const std::size_t n = kin_.size();
+  reserve_huge(s.position, n);
+  reserve_huge(s.velocity, n);
+  reserve_huge(s.radius, n);
+  reserve_huge(s.first_collision, n);
   s.position.resize(n);
   s.velocity.resize(n);
   s.radius.assign(n, 0.5);

@@ -10,6 +10,7 @@
 #include <sys/mman.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <vector>
@@ -45,5 +46,20 @@ struct HugePageAllocator {
 
 template <class T>
 using HugeVector = std::vector<T, HugePageAllocator<T>>;
+
+// Makes room for n elements in a plain std::vector and, if that is a fresh block, marks its
+// whole 2 MiB pages MADV_HUGEPAGE before anything touches them. For arrays whose type callers
+// share (the Snapshot's), where the allocator cannot change: a 2e6-sphere snapshot fills 130 MB
+// of fresh memory, and its 32000 page faults of 4 KiB cost more than the copy (perf, in a VM).
+template <class T>
+void reserve_huge(std::vector<T>& v, std::size_t n) {
+  if (v.capacity() >= n) return;
+  v.reserve(n);
+  constexpr std::size_t kHuge = HugePageAllocator<T>::kHuge;
+  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+  const std::uintptr_t first = (begin + kHuge - 1) / kHuge * kHuge;
+  const std::uintptr_t last = (begin + n * sizeof(T)) / kHuge * kHuge;
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
 
 }  // namespace gs
