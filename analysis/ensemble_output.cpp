@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <sstream>
 
 #include "analysis/json.h"
 #include "io/atomic_file.h"
@@ -94,9 +93,12 @@ Table snapshot_scalars(const EnsembleSums& sums) {
   return out;
 }
 
-std::string crossover_json(const Crossover& c) {
-  return "{\"found\": " + std::string(c.found ? "true" : "false") +
-         ", \"time\": " + json_number(c.time) + ", \"note\": " + json_string(c.note) + "}";
+Json crossover_json(const Crossover& c) {
+  return {{"found", c.found}, {"time", c.time}, {"note", c.note}};
+}
+
+Json window_json(const Window& w) {
+  return Json::array({w.t_lo, w.t_hi});
 }
 
 }  // namespace
@@ -164,112 +166,92 @@ EnsembleSpec held_spec(const EnsembleSums& sums) {
 std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   const EnsembleSpec spec = held_spec(sums);
   const auto& p = spec.physics;
-  std::ostringstream j;
-  j << "{\n";
-  j << "  \"version\": " << json_string(GRAINSHOCK_VERSION) << ",\n";
-  j << "  \"dim\": " << p.dim << ",\n";
-  j << "  \"particles\": " << p.particles << ",\n";
-  j << "  \"density\": " << json_number(p.density) << ",\n";
-  j << "  \"restitution\": " << json_number(p.restitution) << ",\n";
-  j << "  \"cutoff\": " << json_number(p.cutoff) << ",\n";
-  j << "  \"seed\": " << p.seed << ",\n";
-  j << "  \"t_max\": " << json_number(p.t_max) << ",\n";
-  j << "  \"t_max_paper\": " << json_number(p.paper_time(p.t_max)) << ",\n";
-  j << "  \"realisations\": " << sums.count() << ",\n";
-  j << "  \"realisation_indices\": [";
-  for (std::size_t k = 0; k < sums.indices().size(); ++k) j << (k ? ", " : "") << sums.indices()[k];
-  j << "],\n";
-  j << "  \"alpha_theory\": " << json_number(f.alpha_theory) << ",\n";
-  j << "  \"alpha_theory_rule\": "
-    << json_string(p.restitution < 1 ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1") << ",\n";
-  j << "  \"exponents\": [\n";
-  for (std::size_t k = 0; k < f.exponents.size(); ++k) {
-    const auto& e = f.exponents[k];
-    j << "    {\"quantity\": " << json_string(e.quantity)
-      << ", \"column\": " << json_string(e.column)
-      << ", \"exponent\": " << json_number(e.fit.exponent)
-      << ", \"ci_lo\": " << json_number(e.fit.ci_lo) << ", \"ci_hi\": " << json_number(e.fit.ci_hi)
-      << ", \"confidence\": " << json_number(e.fit.confidence)
-      << ", \"standard_error\": " << json_number(e.fit.standard_error)
-      << ", \"theory\": " << json_number(e.theory) << ", \"window\": ["
-      << json_number(e.fit.window.t_lo) << ", " << json_number(e.fit.window.t_hi)
-      << "], \"points\": " << e.fit.points
-      << ", \"plateau_drift\": " << json_number(e.plateau.drift)
-      << ", \"plateau_drift_error\": " << json_number(e.plateau.drift_error)
-      << ", \"plateau_curvature\": " << json_number(e.plateau.curvature)
-      << ", \"plateau_curvature_error\": " << json_number(e.plateau.curvature_error)
-      << ", \"corrected_exponent\": " << json_number(e.corrected.b)
-      << ", \"corrected_ci\": [" << json_number(e.corrected.ci_lo) << ", "
-      << json_number(e.corrected.ci_hi) << "], \"corrected_omega\": "
-      << json_number(e.corrected.omega)
-      << ", \"alpha\": " << json_number(e.alpha)
-      << ", \"alpha_uncertainty\": " << json_number(e.alpha_uncertainty)
-      << ", \"note\": " << json_string(e.note) << "}" << (k + 1 < f.exponents.size() ? "," : "")
-      << "\n";
-  }
-  j << "  ],\n";
-  j << "  \"exponent_definition\": "
-    << json_string(
-           "least-squares slope of ln <y> vs ln t over the window (automatic: the plateau of "
-           "the local slope, analysis/effective_exponent.h: the latest window of >= 0.5 "
-           "decades, after <N_t> >= 20, whose drift D (mean local slope of its last third "
-           "minus that of its first) and curvature K (middle third minus the mean of the "
-           "outer two) are both within 2 bootstrap standard deviations over realisations "
-           "(+ 1e-3); none: no fit); plateau_drift = D, plateau_drift_error = its standard "
-           "deviation; interval: 95% percentile bootstrap over realisations")
-    << ",\n";
+  Json j;
+  j["version"] = GRAINSHOCK_VERSION;
+  j.update(physics_json(p));
+  j["t_max"] = p.t_max;
+  j["t_max_paper"] = p.paper_time(p.t_max);
+  j["realisations"] = sums.count();
+  j["realisation_indices"] = sums.indices();
+  j["alpha_theory"] = f.alpha_theory;
+  j["alpha_theory_rule"] = p.restitution < 1 ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1";
+  Json& exponents = j["exponents"] = Json::array();
+  for (const auto& e : f.exponents)
+    exponents.push_back({{"quantity", e.quantity},
+                         {"column", e.column},
+                         {"exponent", e.fit.exponent},
+                         {"ci_lo", e.fit.ci_lo},
+                         {"ci_hi", e.fit.ci_hi},
+                         {"confidence", e.fit.confidence},
+                         {"standard_error", e.fit.standard_error},
+                         {"theory", e.theory},
+                         {"window", window_json(e.fit.window)},
+                         {"points", e.fit.points},
+                         {"plateau_drift", e.plateau.drift},
+                         {"plateau_drift_error", e.plateau.drift_error},
+                         {"plateau_curvature", e.plateau.curvature},
+                         {"plateau_curvature_error", e.plateau.curvature_error},
+                         {"corrected_exponent", e.corrected.b},
+                         {"corrected_ci", Json::array({e.corrected.ci_lo, e.corrected.ci_hi})},
+                         {"corrected_omega", e.corrected.omega},
+                         {"alpha", e.alpha},
+                         {"alpha_uncertainty", e.alpha_uncertainty},
+                         {"note", e.note}});
+  j["exponent_definition"] =
+      "least-squares slope of ln <y> vs ln t over the window (automatic: the plateau of "
+      "the local slope, analysis/effective_exponent.h: the latest window of >= 0.5 "
+      "decades, after <N_t> >= 20, whose drift D (mean local slope of its last third "
+      "minus that of its first) and curvature K (middle third minus the mean of the "
+      "outer two) are both within 2 bootstrap standard deviations over realisations "
+      "(+ 1e-3); none: no fit); plateau_drift = D, plateau_drift_error = its standard "
+      "deviation; interval: 95% percentile bootstrap over realisations";
   // v_t is no fit of its own: v_rms^2 = 2 E / N holds exactly (analysis/ensemble_fits.h).
-  j << "  \"v_t\": {\"identity\": \"v_rms^2 = 2 E_t / N_t\", \"max_relative_deviation\": "
-    << json_number(f.speed_identity_error) << "},\n";
-  j << "  \"t_c1\": " << crossover_json(f.tc1) << ",\n";
-  j << "  \"t_c1_theory_b\": " << crossover_json(f.tc1_theory_b) << ",\n";
-  j << "  \"t_c1_slope_rule\": " << crossover_json(f.tc1_slope) << ",\n";
-  j << "  \"t_c2\": " << crossover_json(f.tc2) << ",\n";
-  j << "  \"crossover_definition\": "
-    << json_string(
-           "t_c1 (intersection rule, r < 1) = (a / E_0)^(1/b), where the power law a t^-b "
-           "fitted to <E_t> on the plateau of its local slope meets the kick's energy E_0 (the "
-           "elastic regime conserves it); t_c1_theory_b = the same with b fixed at the "
-           "theory's and a fitted on that plateau; t_c1_slope_rule = time from which the local "
-           "slope of <N_t> stays at or below the upper edge of a 10% band around alpha d, up to "
-           "t_c2 "
-           "where the run reaches it; t_c2 = time from which that slope stays above the band "
-           "(towards the elastic regime)")
-    << ",\n";
-  j << "  \"collapse_quality_radius\": " << json_number(f.collapse_radius) << ",\n";
-  j << "  \"collapse_quality_speed\": " << json_number(f.collapse_speed) << ",\n";
-  j << "  \"collapse_note\": " << json_string(f.collapse_note) << ",\n";
-  auto scan = [&](const char* key, const CollapseAlpha& c) {
-    j << "  \"" << key << "\": {\"best\": " << json_number(c.best)
-      << ", \"ci_lo\": " << json_number(c.ci_lo) << ", \"ci_hi\": " << json_number(c.ci_hi)
-      << ", \"q_best\": " << json_number(c.q_best)
-      << ", \"theory_inside\": " << (c.contains(f.alpha_theory) ? "true" : "false")
-      << ", \"note\": " << json_string(c.note) << "},\n";
+  j["v_t"] = {{"identity", "v_rms^2 = 2 E_t / N_t"},
+              {"max_relative_deviation", f.speed_identity_error}};
+  j["t_c1"] = crossover_json(f.tc1);
+  j["t_c1_theory_b"] = crossover_json(f.tc1_theory_b);
+  j["t_c1_slope_rule"] = crossover_json(f.tc1_slope);
+  j["t_c2"] = crossover_json(f.tc2);
+  j["crossover_definition"] =
+      "t_c1 (intersection rule, r < 1) = (a / E_0)^(1/b), where the power law a t^-b "
+      "fitted to <E_t> on the plateau of its local slope meets the kick's energy E_0 (the "
+      "elastic regime conserves it); t_c1_theory_b = the same with b fixed at the "
+      "theory's and a fitted on that plateau; t_c1_slope_rule = time from which the local "
+      "slope of <N_t> stays at or below the upper edge of a 10% band around alpha d, up to "
+      "t_c2 where the run reaches it; t_c2 = time from which that slope stays above the band "
+      "(towards the elastic regime)";
+  j["collapse_quality_radius"] = f.collapse_radius;
+  j["collapse_quality_speed"] = f.collapse_speed;
+  j["collapse_note"] = f.collapse_note;
+  auto scan = [&](const CollapseAlpha& c) {
+    return Json{{"best", c.best},
+                {"ci_lo", c.ci_lo},
+                {"ci_hi", c.ci_hi},
+                {"q_best", c.q_best},
+                {"theory_inside", c.contains(f.alpha_theory)},
+                {"note", c.note}};
   };
-  scan("collapse_alpha_radius", f.collapse_alpha_radius);
-  scan("collapse_alpha_speed", f.collapse_alpha_speed);
-  j << "  \"collapse_alpha_definition\": "
-    << json_string("the alpha of [0.1, 0.6] (step 0.0025) minimising chi^2 per point of the "
-                   "mean scaled distributions against their mean (q_best: Q there); 95% interval over 200 parametric resamples of every bin "
-                   "(normal, its standard error over realisations)")
-    << ",\n";
-  j << "  \"anisotropy_last\": " << json_number(f.anisotropy) << ",\n";
-  j << "  \"anisotropy_last_sem\": " << json_number(f.anisotropy_sem) << ",\n";
-  j << "  \"anisotropy_slope\": " << json_number(f.anisotropy_slope)
-    << ", \"anisotropy_slope_error\": " << json_number(f.anisotropy_slope_error)
-    << ", \"anisotropy_slope_window\": [" << json_number(f.anisotropy_window.t_lo) << ", "
-    << json_number(f.anisotropy_window.t_hi) << "],\n";
-  j << "  \"packing_typical\": " << json_number(f.packing_typical) << ",\n";
-  j << "  \"packing_typical_sem\": " << json_number(f.packing_typical_sem) << ",\n";
-  j << "  \"packing_upper\": " << json_number(f.packing_upper) << ",\n";
-  j << "  \"packing_upper_sem\": " << json_number(f.packing_upper_sem) << ",\n";
-  j << "  \"packing_definition\": " << json_string(BandPacking::definition)
-    << ", \"packing_upper_definition\": "
-    << json_string("active-weighted 90% quantile of the band cells' packing fractions") << ",\n";
-  j << "  \"inner_outer_speed_ratio\": " << json_number(f.inner_outer_ratio) << ",\n";
-  j << "  \"inner_outer_speed_ratio_sem\": " << json_number(f.inner_outer_ratio_sem) << "\n";
-  j << "}\n";
-  return j.str();
+  j["collapse_alpha_radius"] = scan(f.collapse_alpha_radius);
+  j["collapse_alpha_speed"] = scan(f.collapse_alpha_speed);
+  j["collapse_alpha_definition"] =
+      "the alpha of [0.1, 0.6] (step 0.0025) minimising chi^2 per point of the mean scaled "
+      "distributions against their mean (q_best: Q there); 95% interval over 200 parametric "
+      "resamples of every bin (normal, its standard error over realisations)";
+  j["anisotropy_last"] = f.anisotropy;
+  j["anisotropy_last_sem"] = f.anisotropy_sem;
+  j["anisotropy_slope"] = f.anisotropy_slope;
+  j["anisotropy_slope_error"] = f.anisotropy_slope_error;
+  j["anisotropy_slope_window"] = window_json(f.anisotropy_window);
+  j["packing_typical"] = f.packing_typical;
+  j["packing_typical_sem"] = f.packing_typical_sem;
+  j["packing_upper"] = f.packing_upper;
+  j["packing_upper_sem"] = f.packing_upper_sem;
+  j["packing_definition"] = BandPacking::definition;
+  j["packing_upper_definition"] =
+      "active-weighted 90% quantile of the band cells' packing fractions";
+  j["inner_outer_speed_ratio"] = f.inner_outer_ratio;
+  j["inner_outer_speed_ratio_sem"] = f.inner_outer_ratio_sem;
+  return json_text(j);
 }
 
 std::string exponent_table(const EnsembleSums& sums, const EnsembleFits& fits) {

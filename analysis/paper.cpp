@@ -371,25 +371,27 @@ Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit) {
   return c;
 }
 
-std::string comparisons_json(const std::vector<Comparison>& cmp) {
-  std::ostringstream j;
-  j << "[\n";
-  for (std::size_t k = 0; k < cmp.size(); ++k) {
-    const auto& c = cmp[k];
-    j << "    {\"case\": " << json_string(c.case_name)
-      << ", \"quantity\": " << json_string(c.quantity) << ", \"d\": " << c.d
-      << ", \"r\": " << json_number(c.r) << ", \"measured\": " << json_number(c.measured)
-      << ", \"uncertainty\": " << json_number(c.uncertainty)
-      << ", \"theory\": " << json_number(c.theory) << ", \"relation\": " << json_string(c.relation)
-      << ", \"tolerance\": " << json_number(c.tolerance) << ", \"ci_lo\": " << json_number(c.ci_lo)
-      << ", \"ci_hi\": " << json_number(c.ci_hi)
-      << ", \"counted\": " << (c.counted ? "true" : "false")
-      << ", \"agrees\": " << (c.measured_ok() ? (c.agrees() ? "true" : "false") : "null")
-      << ", \"source\": " << json_string(c.source) << ", \"figure\": " << json_string(c.figure)
-      << ", \"note\": " << json_string(c.note) << "}" << (k + 1 < cmp.size() ? "," : "") << "\n";
-  }
-  j << "  ]";
-  return j.str();
+Json comparisons_json(const std::vector<Comparison>& cmp) {
+  Json out = Json::array();
+  for (const auto& c : cmp)
+    out.push_back({{"case", c.case_name},
+                   {"quantity", c.quantity},
+                   {"d", c.d},
+                   {"r", c.r},
+                   {"measured", c.measured},
+                   {"uncertainty", c.uncertainty},
+                   {"theory", c.theory},
+                   {"relation", c.relation},
+                   {"tolerance", c.tolerance},
+                   {"ci_lo", c.ci_lo},
+                   {"ci_hi", c.ci_hi},
+                   {"counted", c.counted},
+                   // null: not measured, so neither agreeing nor not
+                   {"agrees", c.measured_ok() ? Json(c.agrees()) : Json()},
+                   {"source", c.source},
+                   {"figure", c.figure},
+                   {"note", c.note}});
+  return out;
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include "analysis/crossover.h"
 #include "analysis/energy_scaling.h"
 #include "analysis/ensemble_fits.h"
+#include "analysis/json.h"
 #include "analysis/realisation.h"
 
 namespace gs {
@@ -94,7 +95,8 @@ Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossover
 Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& readings, double level);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
-std::string comparisons_json(const std::vector<Comparison>& cmp);
+// The comparisons as a JSON array (summary.json of the figures job).
+Json comparisons_json(const std::vector<Comparison>& cmp);
 // The counted comparisons (the sensitivity readings go to sensitivity_markdown).
 std::string comparisons_markdown(const std::vector<Comparison>& cmp);
 std::string sensitivity_markdown(const std::vector<Comparison>& cmp);

@@ -2,7 +2,6 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
-#include <sstream>
 
 #include "analysis/json.h"
 #include "apps/cli.h"
@@ -51,9 +50,8 @@ void add_bench_command(CLI::App& app) {
                     c.heavy ? " [heavy]" : "");
       return;
     }
-    std::ostringstream json;
-    json << "[\n";
-    bool first = true, any = false;
+    Json json = Json::array();
+    bool any = false;
     for (const auto& c : cases) {
       if (!selected(c)) continue;
       any = true;
@@ -75,18 +73,18 @@ void add_bench_command(CLI::App& app) {
                     f.target.empty() ? "" : ("target " + f.target + "  ").c_str());
         if (values.size() > 1) std::printf("range %.4g .. %.4g", values.front(), values.back());
         std::printf("\n");
-        json << (first ? "" : ",\n") << "  {\"case\": \"" << c.name << "\", \"figure\": \""
-             << f.name << "\", \"value\": " << json_number(median)
-             << ", \"min\": " << json_number(values.front())
-             << ", \"max\": " << json_number(values.back()) << ", \"runs\": " << values.size()
-             << ", \"unit\": \"" << f.unit << "\"}";
-        first = false;
+        json.push_back({{"case", c.name},
+                        {"figure", f.name},
+                        {"value", median},
+                        {"min", values.front()},
+                        {"max", values.back()},
+                        {"runs", values.size()},
+                        {"unit", f.unit}});
       }
       std::fflush(stdout);
     }
     if (!any) throw UserError("bench: no case matches the filter (see --list)");
-    json << "\n]\n";
-    if (!opt->json.empty()) write_file_atomic(opt->json, json.str());
+    if (!opt->json.empty()) write_file_atomic(opt->json, json_text(json));
   });
 }
 

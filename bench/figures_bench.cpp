@@ -6,10 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
+#include "analysis/json.h"
 #include "bench/bench.h"
 #include "sim/error.h"
 
@@ -40,15 +40,13 @@ double run_figures(const std::string& args, const fs::path& out) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The last "key": number in a JSON file.
+// A top-level number of a JSON file the command wrote.
 double json_value(const fs::path& file, const std::string& key) {
   std::ifstream f(file);
-  std::stringstream s;
-  s << f.rdbuf();
-  const std::string text = s.str();
-  const auto at = text.rfind("\"" + key + "\": ");
-  if (at == std::string::npos) throw UserError(file.string() + ": no " + key);
-  return std::stod(text.substr(at + key.size() + 4));
+  const Json j = Json::parse(f, nullptr, false);
+  if (!j.is_object() || !j.contains(key) || !j[key].is_number())
+    throw UserError(file.string() + ": no number " + key);
+  return j[key].get<double>();
 }
 
 int threads() {

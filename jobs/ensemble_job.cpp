@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <sstream>
 
 #include "analysis/ensemble_ranks.h"
 #include "analysis/ensemble_runner.h"
@@ -161,12 +160,14 @@ EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const Ensem
   const EnsembleFits fits = fit_ensemble(sums, job.fit);
   write_file_atomic(dir / "ensemble.toml", job_toml(job));
   write_ensemble_outputs(dir, sums, fits);
-  std::ostringstream j;
-  j << "{\n  \"wall_seconds\": " << json_number(t.wall_seconds) << ",\n  \"threads\": " << t.threads
-    << ",\n  \"ranks\": " << t.ranks << ",\n  \"realisations_run\": " << t.realisations
-    << ",\n  \"wall_seconds_per_realisation\": "
-    << json_number(t.wall_seconds / double(std::max<std::uint64_t>(1, t.realisations))) << "\n}\n";
-  write_file_atomic(dir / "timing.json", j.str());
+  Json j;
+  j["wall_seconds"] = t.wall_seconds;
+  j["threads"] = t.threads;
+  j["ranks"] = t.ranks;
+  j["realisations_run"] = t.realisations;
+  j["wall_seconds_per_realisation"] =
+      t.wall_seconds / double(std::max<std::uint64_t>(1, t.realisations));
+  write_file_atomic(dir / "timing.json", json_text(j));
   return fits;
 }
 

@@ -27,15 +27,17 @@ using Clock = std::chrono::steady_clock;
 // extrapolated to the plan's realisation counts; from wall time and, beside it, from the
 // process's CPU time, which another program on the machine changes least (loaded machines).
 void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir) {
-  std::ostringstream j, table;
-  j << "{\n  \"mode\": " << json_string(to_string(plan.mode)) << ",\n  \"threads\": " << o.threads
-    << ",\n  \"sample_per_case\": " << o.sample << ",\n  \"cases\": [\n";
+  Json j;
+  j["mode"] = to_string(plan.mode);
+  j["threads"] = o.threads;
+  j["sample_per_case"] = o.sample;
+  Json& cases = j["cases"] = Json::array();
+  std::ostringstream table;
   table << "| case | N | t_max | M | sample wall (s) | s per realisation per thread | estimated "
            "wall (s) | CPU s per realisation | estimated from CPU (s) |\n"
            "|---|---|---|---|---|---|---|---|---|\n";
   double total = 0, total_cpu = 0;
-  for (std::size_t k = 0; k < plan.cases.size(); ++k) {
-    const auto& c = plan.cases[k];
+  for (const auto& c : plan.cases) {
     EnsembleSpec s = c.spec;
     s.realisations = static_cast<std::uint64_t>(o.sample);
     RunnerOptions ro;
@@ -52,14 +54,14 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
     const double est_cpu = cpu * double(c.spec.realisations) / o.threads;
     total += est;
     total_cpu += est_cpu;
-    j << "    {\"case\": " << json_string(c.name) << ", \"particles\": " << c.spec.physics.particles
-      << ", \"t_max\": " << json_number(c.spec.physics.t_max)
-      << ", \"realisations\": " << c.spec.realisations
-      << ", \"sample_wall_seconds\": " << json_number(wall)
-      << ", \"estimated_wall_seconds\": " << json_number(est)
-      << ", \"cpu_seconds_per_realisation\": " << json_number(cpu)
-      << ", \"estimated_wall_seconds_from_cpu\": " << json_number(est_cpu) << "}"
-      << (k + 1 < plan.cases.size() ? "," : "") << "\n";
+    cases.push_back({{"case", c.name},
+                     {"particles", c.spec.physics.particles},
+                     {"t_max", c.spec.physics.t_max},
+                     {"realisations", c.spec.realisations},
+                     {"sample_wall_seconds", wall},
+                     {"estimated_wall_seconds", est},
+                     {"cpu_seconds_per_realisation", cpu},
+                     {"estimated_wall_seconds_from_cpu", est_cpu}});
     table << "| " << c.name << " | " << c.spec.physics.particles << " | "
           << figure_number(c.spec.physics.t_max) << " | " << c.spec.realisations << " | "
           << figure_number(wall) << " | " << figure_number(per) << " | " << figure_number(est)
@@ -70,9 +72,9 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
                    c.name.c_str(), o.sample, wall, est,
                    static_cast<unsigned long long>(c.spec.realisations));
   }
-  j << "  ],\n  \"estimated_wall_seconds_from_cpu\": " << json_number(total_cpu)
-    << ",\n  \"estimated_wall_seconds\": " << json_number(total) << "\n}\n";
-  write_file_atomic(dir / "estimate.json", j.str());
+  j["estimated_wall_seconds_from_cpu"] = total_cpu;
+  j["estimated_wall_seconds"] = total;
+  write_file_atomic(dir / "estimate.json", json_text(j));
   std::ostringstream md;
   md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode)
      << (o.long_3d ? " --long" : "") << "`\n\n"

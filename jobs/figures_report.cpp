@@ -135,30 +135,31 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
                            const std::vector<CaseResult>& results,
                            const std::vector<Comparison>& cmp,
                            const std::vector<std::string>& problems) {
-  std::ostringstream j;
-  j << "{\n  \"version\": " << json_string(GRAINSHOCK_VERSION)
-    << ",\n  \"mode\": " << json_string(to_string(run.mode)) << ",\n  \"seed\": " << run.seed
-    << ",\n  \"threads\": " << run.threads << ",\n  \"wall_seconds\": " << json_number(run.wall)
-    << ",\n  \"simulation_wall_seconds\": " << json_number(run.simulation_wall)
-    << ",\n  \"cases\": [\n";
-  for (std::size_t k = 0; k < results.size(); ++k) {
-    const auto& c = results[k];
+  Json j;
+  j["version"] = GRAINSHOCK_VERSION;
+  j["mode"] = to_string(run.mode);
+  j["seed"] = run.seed;
+  j["threads"] = run.threads;
+  j["wall_seconds"] = run.wall;
+  j["simulation_wall_seconds"] = run.simulation_wall;
+  Json& cases = j["cases"] = Json::array();
+  for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
-    j << "    {\"name\": " << json_string(c.plan->name) << ", \"d\": " << p.dim
-      << ", \"r\": " << json_number(p.restitution) << ", \"particles\": " << p.particles
-      << ", \"t_max\": " << json_number(p.t_max) << ", \"realisations\": " << c.sums.count()
-      << ", \"wall_seconds\": " << json_number(c.wall)
-      << ", \"t_c1\": " << json_number(c.fits.tc1.time)
-      << ", \"t_c1_theory_b\": " << json_number(c.fits.tc1_theory_b.time)
-      << ", \"t_c2\": " << json_number(c.fits.tc2.time)
-      << ", \"folder\": " << json_string("ensembles/" + c.plan->name) << "}"
-      << (k + 1 < results.size() ? "," : "") << "\n";
+    cases.push_back({{"name", c.plan->name},
+                     {"d", p.dim},
+                     {"r", p.restitution},
+                     {"particles", p.particles},
+                     {"t_max", p.t_max},
+                     {"realisations", c.sums.count()},
+                     {"wall_seconds", c.wall},
+                     {"t_c1", c.fits.tc1.time},
+                     {"t_c1_theory_b", c.fits.tc1_theory_b.time},
+                     {"t_c2", c.fits.tc2.time},
+                     {"folder", "ensembles/" + c.plan->name}});
   }
-  j << "  ],\n  \"comparisons\": " << comparisons_json(cmp) << ",\n  \"problems\": [";
-  for (std::size_t k = 0; k < problems.size(); ++k)
-    j << (k ? ", " : "") << json_string(problems[k]);
-  j << "]\n}\n";
-  write_file_atomic(dir / "summary.json", j.str());
+  j["comparisons"] = comparisons_json(cmp);
+  j["problems"] = problems;
+  write_file_atomic(dir / "summary.json", json_text(j));
 }
 
 void write_figures_report(const std::filesystem::path& dir, const FiguresRun& run,

@@ -51,49 +51,40 @@ std::string summary_json(const RunOptions& o, const Simulation& sim, bool interr
   const PhysicsConfig& p = o.plan.physics;
   const auto& st = sim.stats();
   const Sample s = sim.sample();
-  std::ostringstream j;
-  j << "{\n"
-    << "  \"version\": \"" << GRAINSHOCK_VERSION << "\",\n"
-    << "  \"dim\": " << p.dim << ",\n"
-    << "  \"particles\": " << p.particles << ",\n"
-    << "  \"density\": " << json_number(p.density) << ",\n"
-    << "  \"restitution\": " << json_number(p.restitution) << ",\n"
-    << "  \"cutoff\": " << json_number(p.cutoff) << ",\n"
-    << "  \"seed\": " << p.seed << ",\n"
-    << "  \"realisation\": " << p.realisation << ",\n"
-    << "  \"initial\": \"" << to_string(p.initial) << "\",\n"
-    << "  \"t_end\": " << json_number(sim.time()) << ",\n"
-    << "  \"t_end_paper\": " << json_number(p.paper_time(sim.time())) << ",\n"
-    << "  \"interrupted\": " << (interrupted ? "true" : "false") << ",\n"
-    << "  \"events\": " << st.events << ",\n"
-    << "  \"collisions\": " << st.collisions << ",\n"
-    << "  \"inelastic_collisions\": " << st.inelastic << ",\n"
-    << "  \"cell_crossings\": " << st.crossings << ",\n"
-    << "  \"stale_events\": " << st.stale << ",\n"
-    << "  \"overlaps\": " << st.overlaps << ",\n"
-    << "  \"max_overlap\": " << json_number(st.max_overlap) << ",\n"
-    << "  \"active\": " << s.active << ",\n"
-    << "  \"energy\": " << json_number(s.energy) << ",\n"
-    << "  \"radius_rms\": " << json_number(s.radius_rms) << ",\n"
-    << "  \"speed_rms\": " << json_number(s.speed_rms) << "\n"
-    << "}\n";
-  return j.str();
+  Json j;
+  j["version"] = GRAINSHOCK_VERSION;
+  j.update(physics_json(p));
+  j["realisation"] = p.realisation;
+  j["initial"] = to_string(p.initial);
+  j["t_end"] = sim.time();
+  j["t_end_paper"] = p.paper_time(sim.time());
+  j["interrupted"] = interrupted;
+  j["events"] = st.events;
+  j["collisions"] = st.collisions;
+  j["inelastic_collisions"] = st.inelastic;
+  j["cell_crossings"] = st.crossings;
+  j["stale_events"] = st.stale;
+  j["overlaps"] = st.overlaps;
+  j["max_overlap"] = st.max_overlap;
+  j["active"] = s.active;
+  j["energy"] = s.energy;
+  j["radius_rms"] = s.radius_rms;
+  j["speed_rms"] = s.speed_rms;
+  return json_text(j);
 }
 
 // Wall times, apart from summary.json so that it is the same file on every run.
 std::string timing_json(const RunTiming& t, double after_s, const Simulation& sim) {
-  std::ostringstream j;
   const double collisions = static_cast<double>(sim.stats().collisions);
-  j << "{\n"
-    << "  \"setup_seconds\": " << json_number(t.setup) << ",\n"
-    << "  \"run_seconds\": " << json_number(t.run) << ",\n"
-    << "  \"snapshot_seconds\": " << json_number(t.snapshots) << ",\n"
-    << "  \"checkpoint_seconds\": " << json_number(t.checkpoints) << ",\n"
-    << "  \"checkpoints\": " << t.checkpoints_written << ",\n"
-    << "  \"pictures_and_movie_seconds\": " << json_number(after_s) << ",\n"
-    << "  \"collisions_per_second\": " << json_number(t.run > 0 ? collisions / t.run : 0) << "\n"
-    << "}\n";
-  return j.str();
+  Json j;
+  j["setup_seconds"] = t.setup;
+  j["run_seconds"] = t.run;
+  j["snapshot_seconds"] = t.snapshots;
+  j["checkpoint_seconds"] = t.checkpoints;
+  j["checkpoints"] = t.checkpoints_written;
+  j["pictures_and_movie_seconds"] = after_s;
+  j["collisions_per_second"] = t.run > 0 ? collisions / t.run : 0.0;
+  return json_text(j);
 }
 
 // One colour range for all pictures of a run, so that a colour means one value in every frame:
@@ -200,9 +191,8 @@ void write_trajectory(const fs::path& dir, const RunOptions& o) {
 
 bool finished_run(const fs::path& dir) {
   std::ifstream f(dir / "summary.json");
-  std::stringstream text;
-  text << f.rdbuf();
-  return text.str().find("\"interrupted\": false") != std::string::npos;
+  const Json j = Json::parse(f, nullptr, /*allow_exceptions=*/false);  // absent or cut: not done
+  return j.is_object() && j.contains("interrupted") && j["interrupted"] == false;
 }
 
 }  // namespace
@@ -329,8 +319,10 @@ RunResult run_job(const RunOptions& o, bool resume) {
   }
   if (elastic.valid()) {
     const std::optional<Snapshot> s = elastic.get();
-    if (!s) stopped = true;
-    else if (!stopped) write_elastic_comparison(dir, o, *s);
+    if (!s)
+      stopped = true;
+    else if (!stopped)
+      write_elastic_comparison(dir, o, *s);
   }
   loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
@@ -338,11 +330,11 @@ RunResult run_job(const RunOptions& o, bool resume) {
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
   if (!o.quiet)
-    std::fprintf(stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
-                 stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
-                 static_cast<long long>(sim.stats().collisions), loop->timing().run, dir.c_str(),
-                 stopped ? (" (continue with: grainshock resume " + dir.string() + ")").c_str()
-                         : "");
+    std::fprintf(
+        stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
+        stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
+        static_cast<long long>(sim.stats().collisions), loop->timing().run, dir.c_str(),
+        stopped ? (" (continue with: grainshock resume " + dir.string() + ")").c_str() : "");
   return {.stopped = stopped};
 }
 

@@ -10,7 +10,7 @@ shift || true
 
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libcli11-dev libtomlplusplus-dev
+  libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libosmesa6-dev libegl-dev libgl-dev libpng-dev zlib1g-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
