@@ -37,6 +37,26 @@ double max_rsa_density(int dim) {
   }
 }
 
+std::int64_t lattice_side(std::int64_t n, int dim) {
+  const auto power = [dim](std::int64_t k) {
+    std::int64_t p = 1;
+    for (int d = 0; d < dim; ++d) p *= k;
+    return p;
+  };
+  auto k = static_cast<std::int64_t>(std::ceil(std::pow(static_cast<double>(n), 1.0 / dim)));
+  while (power(k) < n) ++k;
+  while (k > 1 && power(k - 1) >= n) --k;
+  return k;
+}
+
+double max_thermal_density(int dim, std::int64_t n) {
+  if (dim == 1) return max_rsa_density(1);
+  const double fluid = dim == 2 ? 0.70 * 4 / std::numbers::pi : 0.52 * 6 / std::numbers::pi;
+  const double side = 1.001 * static_cast<double>(lattice_side(n, dim));
+  const double lattice = std::min(fluid, static_cast<double>(n) / std::pow(side, dim));
+  return std::max(max_rsa_density(dim), lattice);
+}
+
 static std::string num(double x) {
   return format_double(x);
 }
@@ -74,9 +94,14 @@ void validate(const PhysicsConfig& c) {
       bad("--lattice " + num(c.lattice) + ": spacing must exceed the diameter 1");
   } else {
     if (!(c.density > 0)) bad("--density " + num(c.density) + ": must be positive");
-    if (c.density > max_rsa_density(c.dim))  // a limit of the physics, not of the flag
+    // Limits of the physics, not of the flag.
+    if (c.initial == Initial::Kick && c.density > max_rsa_density(c.dim))
       fail("--density " + num(c.density) + ": above " + num(max_rsa_density(c.dim)) +
            ", the most random sequential addition reaches in " + std::to_string(c.dim) + "D");
+    if (c.initial == Initial::Thermal && c.density > max_thermal_density(c.dim, c.particles))
+      fail("--density " + num(c.density) + ": above " +
+           num(max_thermal_density(c.dim, c.particles)) + ", the most a thermal start of " +
+           std::to_string(c.particles) + " particles reaches in " + std::to_string(c.dim) + "D");
   }
   if (!(c.restitution >= 0 && c.restitution <= 1))
     bad("--restitution " + num(c.restitution) + ": must lie in [0, 1]");

@@ -50,6 +50,17 @@ void check_memory(const PhysicsConfig& c, int snapshot_copies = 1);
 // jamming limits: packing 0.547 in 2D, Feder 1980; 0.384 in 3D, Talbot et al. 1991).
 double max_rsa_density(int dim);
 
+// Sites per side of the smallest simple cubic (square) lattice with at least n sites: a dense
+// thermal start is such a lattice, melted (sim/melt.h).
+std::int64_t lattice_side(std::int64_t n, int dim);
+// Highest number density of a thermal start of n particles. Above max_rsa_density it is a melted
+// lattice, which needs a gap between neighbours (a spacing of 1.001 diameters) and stops below
+// freezing or a little above it, where a fluid still lasts: packing 0.70 in 2D (the hard-disc
+// liquid, Bernard & Krauth 2011), 0.52 in 3D (over freezing at 0.494 the fluid is metastable, but
+// crystallises from a thermal start only after far longer than these runs; and 0.5236 is the
+// simple cubic lattice's close packing). In 1D the random rods' limit stays.
+double max_thermal_density(int dim, std::int64_t n);
+
 // TOML lines, one key per physics flag, readable back with --config; the files that hold them
 // (run.toml, movie.toml, ensemble.toml) add their own keys and a comment saying how to rerun.
 std::string to_toml(const PhysicsConfig& c);

@@ -8,6 +8,7 @@
 #include "sim/cell_grid.h"
 #include "sim/error.h"
 #include "sim/huge_pages.h"
+#include "sim/melt.h"
 
 namespace gs {
 
@@ -81,15 +82,29 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
 }
 
 template <int D>
-VecArray<D> cubic_lattice(std::int64_t n, double box) {
-  const auto k =
-      static_cast<std::int64_t>(std::ceil(std::pow(static_cast<double>(n), 1.0 / D) - 1e-9));
+VecArray<D> cubic_lattice(std::int64_t n, double box, Rng& rng) {
+  const std::int64_t k = lattice_side(n, D);
   const double a = box / static_cast<double>(k);
   GS_CHECK_MSG(a >= 1.0, "lattice spacing below one diameter");
-  VecArray<D> pos(static_cast<std::size_t>(n));
-  for (std::int64_t i = 0; i < n; ++i) {
-    std::int64_t rest = i;
-    for (int d = 0; d < D; ++d, rest /= k) pos[i][d] = (static_cast<double>(rest % k) + 0.5) * a;
+  std::int64_t sites = 1;
+  for (int d = 0; d < D; ++d) sites *= k;
+  // A partial Fisher-Yates shuffle picks the sites to leave empty.
+  std::vector<std::int64_t> site(static_cast<std::size_t>(sites));
+  for (std::int64_t s = 0; s < sites; ++s) site[s] = s;
+  std::vector<bool> empty(site.size(), false);
+  for (std::int64_t v = 0; v < sites - n; ++v) {
+    const auto pick = v + static_cast<std::int64_t>(rng.below(static_cast<std::uint64_t>(sites - v)));
+    std::swap(site[v], site[pick]);
+    empty[site[v]] = true;
+  }
+  VecArray<D> pos;
+  pos.reserve(static_cast<std::size_t>(n));
+  for (std::int64_t s = 0; s < sites; ++s) {
+    if (empty[s]) continue;
+    Vec<D> x;
+    std::int64_t rest = s;
+    for (int d = 0; d < D; ++d, rest /= k) x[d] = (static_cast<double>(rest % k) + 0.5) * a;
+    pos.push_back(x);
   }
   return pos;
 }
@@ -183,6 +198,9 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
     } else {
       s.position = random_rods(c.particles, box, pos_rng);
     }
+  } else if (c.density > max_rsa_density(D)) {
+    GS_CHECK(c.initial == Initial::Thermal);  // validate() refuses a denser kick
+    return melted_lattice<D>(c);
   } else {
     s.position = random_sequential_addition<D>(c.particles, box, pos_rng);
   }
@@ -212,9 +230,9 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
 template VecArray<1> random_sequential_addition<1>(std::int64_t, double, Rng&);
 template VecArray<2> random_sequential_addition<2>(std::int64_t, double, Rng&);
 template VecArray<3> random_sequential_addition<3>(std::int64_t, double, Rng&);
-template VecArray<1> cubic_lattice<1>(std::int64_t, double);
-template VecArray<2> cubic_lattice<2>(std::int64_t, double);
-template VecArray<3> cubic_lattice<3>(std::int64_t, double);
+template VecArray<1> cubic_lattice<1>(std::int64_t, double, Rng&);
+template VecArray<2> cubic_lattice<2>(std::int64_t, double, Rng&);
+template VecArray<3> cubic_lattice<3>(std::int64_t, double, Rng&);
 template VecArray<1> thermal_velocities<1>(std::int64_t, double, Rng&);
 template VecArray<2> thermal_velocities<2>(std::int64_t, double, Rng&);
 template VecArray<3> thermal_velocities<3>(std::int64_t, double, Rng&);

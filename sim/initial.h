@@ -27,11 +27,12 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng);
 template <int D>
 VecArray<D> thermal_velocities(std::int64_t n, double temperature, Rng& rng);
 
-// The first n sites of a simple cubic (square) lattice filling the box: a start for dense gases
-// that random sequential addition cannot reach (benchmarks at packing 0.5). GS_CHECKs that the
-// spacing is at least a diameter.
+// n sites of the simple cubic (square) lattice of lattice_side(n, D) sites per side filling the
+// box, the empty sites drawn at random so that the vacancies are spread through the box (the first
+// n sites would leave a slab of vacuum). The start of dense thermal gases (sim/melt.h); sites are
+// returned in lattice order. GS_CHECKs that the spacing is at least a diameter.
 template <int D>
-VecArray<D> cubic_lattice(std::int64_t n, double box);
+VecArray<D> cubic_lattice(std::int64_t n, double box, Rng& rng);
 
 template <int D>
 InitialState<D> make_initial_state(const PhysicsConfig& c);

@@ -107,7 +107,8 @@ TEST(Checkpoint, TiesAreBrokenTheSameWay) {
   c.restitution = 0.8;
   c.initial = Initial::Thermal;
   InitialState<2> init;
-  init.position = cubic_lattice<2>(c.particles, c.box());
+  Rng lattice_rng(1, 0, Stream::Positions);  // 40^2 sites, none left empty: unused
+  init.position = cubic_lattice<2>(c.particles, c.box(), lattice_rng);
   init.velocity.resize(init.position.size());
   for (std::size_t i = 0; i < init.position.size(); ++i)
     init.velocity[i] = Vec<2>((i % 40) % 2 ? -1.0 : 1.0, 0.0);

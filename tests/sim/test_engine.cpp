@@ -55,7 +55,8 @@ TEST(Engine, DenseElasticGasStaysApart3D) {
   PhysicsConfig c = thermal(3, 4096, 1.0);
   c.density = 0.5 * 6 / M_PI;
   InitialState<3> init;
-  init.position = cubic_lattice<3>(c.particles, c.box());
+  Rng lattice_rng(1, 0, Stream::Positions);  // 16^3 sites, none left empty: unused
+  init.position = cubic_lattice<3>(c.particles, c.box(), lattice_rng);
   Rng rng(1, 0, Stream::Velocities);
   init.velocity = thermal_velocities<3>(c.particles, 1.0, rng);
   Engine<3> sim(c, std::move(init));
