@@ -142,7 +142,7 @@ class Engine final : public Simulation {
   void collide_pair(std::int32_t i, std::int32_t j);
   void collide_sticky(std::int32_t i, std::int32_t j);
   void cross_cell(std::int32_t i);
-  void sort_by_cell(InitialState<D>& init);
+  void sort_by_cell(const InitialState<D>& init);  // tag_: the particles in cell (Morton) order
   void mark_moving(std::int32_t i);
   void mark_active(std::int32_t i);
   void snapshot_info(Snapshot& s) const;  // the header every snapshot shares
