@@ -40,8 +40,7 @@ std::string window_note(const ExponentFit& e) {
   return "exponent " + fmt(e.fit.exponent) + " [" + fmt(e.fit.ci_lo) + ", " + fmt(e.fit.ci_hi) +
          "] fitted on the plateau t in [" + fmt(e.fit.window.t_lo) + ", " + fmt(e.fit.window.t_hi) +
          "], slope drift across it " + fmt(e.plateau.drift, 2) + " +- " +
-         fmt(e.plateau.drift_error, 2) +
-         "; uncertainty: half width of the 95% bootstrap interval";
+         fmt(e.plateau.drift_error, 2) + "; uncertainty: half width of the 95% bootstrap interval";
 }
 
 }  // namespace
@@ -109,8 +108,8 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
     a.theory = 0;
     a.source = "paper: A(t) converges to a nonzero value below 1 for r < 1";
     a.note = "A(t_max) = " + fmt(f.anisotropy) + " +- " + fmt(f.anisotropy_sem, 2) +
-             "; weighted least squares of ln A on ln t over [" +
-             fmt(f.anisotropy_window.t_lo) + ", " + fmt(f.anisotropy_window.t_hi) +
+             "; weighted least squares of ln A on ln t over [" + fmt(f.anisotropy_window.t_lo) +
+             ", " + fmt(f.anisotropy_window.t_hi) +
              "]; uncertainty: 2 standard errors (samples' errors taken independent); constant "
              "only where the slope is zero within it";
     out.push_back(a);
@@ -121,9 +120,10 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
     a.theory = 0;
     a.tolerance = 0.05;
     a.source = "paper: A(t) converges to 0 for r = 1";
-    a.note = "mean over realisations at the last sample; uncertainty: standard error; late "
-             "slope d ln A / d ln t = " + fmt(f.anisotropy_slope, 3) + " +- " +
-             fmt(f.anisotropy_slope_error, 2);
+    a.note =
+        "mean over realisations at the last sample; uncertainty: standard error; late "
+        "slope d ln A / d ln t = " +
+        fmt(f.anisotropy_slope, 3) + " +- " + fmt(f.anisotropy_slope_error, 2);
     out.push_back(a);
   }
   if (p.dim == 2) {
@@ -141,8 +141,7 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
     };
     const Measure measures[] = {
         {"band packing (typical, cells of 10)", "packing_typical", 1, true, false},
-        {"band number density (typical, cells of 10)", "packing_typical", to_number, false,
-         true},
+        {"band number density (typical, cells of 10)", "packing_typical", to_number, false, true},
         {"band packing (upper, 90% quantile)", "packing_upper", 1, false, false},
         {"band packing (densest cell, shifted grids)", "packing_densest_cell", 1, false, false},
         {"band packing (local, 90% quantile)", "packing_local_upper", 1, false, false},
@@ -159,8 +158,9 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
       b.counted = elastic ? m.declared_elastic : m.declared_inelastic;
       b.source = elastic ? "paper: ~0.47 for r = 1 (Rankine-Hugoniot: number density 0.454)"
                          : "paper: 0.78-0.82 for r < 1 (cells of side 10)";
-      b.note = std::string("at the last snapshot time; uncertainty: standard error over "
-                           "realisations; ") +
+      b.note = std::string(
+                   "at the last snapshot time; uncertainty: standard error over "
+                   "realisations; ") +
                (b.counted ? "the declared reading (Definitions)"
                           : "another reading (sensitivity, not counted)");
       out.push_back(b);
@@ -193,9 +193,11 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
       q.uncertainty = 0.5 * (ca.ci_hi - ca.ci_lo);
       q.theory = f.alpha_theory;
       q.source = "scaling collapse (paper Figs. 4, 5) at the theory's alpha";
-      q.note = "95% interval [" + fmt(ca.ci_lo) + ", " + fmt(ca.ci_hi) + "] (parametric bootstrap "
-               "of the histograms); Q at the best alpha " + fmt(ca.q_best, 2) +
-               ", at the theory's " + fmt(k == 0 ? f.collapse_radius : f.collapse_speed, 2) +
+      q.note = "95% interval [" + fmt(ca.ci_lo) + ", " + fmt(ca.ci_hi) +
+               "] (parametric bootstrap "
+               "of the histograms); Q at the best alpha " +
+               fmt(ca.q_best, 2) + ", at the theory's " +
+               fmt(k == 0 ? f.collapse_radius : f.collapse_speed, 2) +
                (ca.note.empty() ? "" : "; " + ca.note) +
                (f.collapse_note.empty() ? "" : "; " + f.collapse_note);
       q.figure = p.dim == 2 ? "fig4_collapse_2d.png" : "fig5_collapse_3d.png";
@@ -428,7 +430,9 @@ std::string label_of(const Comparison& c) {
 
 }  // namespace
 
-std::string comparisons_markdown(const std::vector<Comparison>& cmp) { return table_of(cmp, true); }
+std::string comparisons_markdown(const std::vector<Comparison>& cmp) {
+  return table_of(cmp, true);
+}
 
 std::string sensitivity_markdown(const std::vector<Comparison>& cmp) {
   return table_of(cmp, false);
@@ -450,8 +454,8 @@ std::string comparison_summary_markdown(const std::vector<Comparison>& cmp) {
       ++agree;
     } else {
       no << "- " << label_of(c) << ": measured " << fmt(c.measured) << " +- "
-         << fmt(c.uncertainty, 2) << " against " << fmt(c.theory) << " (" << c.source
-         << "); " << c.note << "\n";
+         << fmt(c.uncertainty, 2) << " against " << fmt(c.theory) << " (" << c.source << "); "
+         << c.note << "\n";
     }
   }
   std::ostringstream md;
@@ -470,10 +474,12 @@ std::string definitions_markdown() {
     << kPhi2Tolerance << " for phi2, " << kPackingInelasticTolerance
     << " for the packing (the paper's range 0.78-0.82) and " << kPackingElasticTolerance
     << " for ~0.47, 0.05 for A -> 0, 20% for the shock jump; for 'inside the interval', the "
-       "theory's value lies in the measured 95% interval. 'not measured': the run does not reach what the quantity needs (no "
+       "theory's value lies in the measured 95% interval. 'not measured': the run does not reach "
+       "what the quantity needs (no "
        "plateau, too few crossovers); the note says what is missing.\n\n";
   s << "- Cutoff delta (the run table's column): collisions whose normal relative speed is "
-       "below it are elastic. 2D runs use the paper's 1e-4; 3D runs with r < 1 use 1e-6, "
+       "below it are elastic. 2D runs with r < 1 use 1e-5 (at the paper's 1e-4 the N_t slope "
+       "drifts into the delta crossover before t_max: t_c2 ~ 2.7e5); 3D runs with r < 1 use 1e-6, "
        "because at 1e-4 the local slope of E_t turns back towards the elastic regime (t_c2, "
        "v_t ~ delta) before it plateaus, from t ~ 5e3 at r = 0.1 and ~3e4 at r = 0.7; t_c2 ~ "
        "delta^-(4/3) comes ~460 times later at 1e-6. The delta scan measures t_c2 itself.\n"

@@ -118,8 +118,8 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     ro.threads = o.threads;
     ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
       progress->update(double(done_before + done) / double(total),
-                      c.name + ": " + std::to_string(done) + " of " +
-                          std::to_string(c.spec.realisations) + " realisations");
+                       c.name + ": " + std::to_string(done) + " of " +
+                           std::to_string(c.spec.realisations) + " realisations");
     };
     const auto tc = Clock::now();
     RunnerResult r = run_ensemble(c.spec, ro);
@@ -131,7 +131,13 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     CaseResult cr{&c, std::move(r.sums), {}, seconds_since(tc)};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
     if (!c.delta_scan) {
-      const auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
+      auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
+      if (c.superseded_for_alpha)
+        for (auto& m : more)
+          if (m.quantity.starts_with("alpha from")) {
+            m.counted = false;
+            m.note = "superseded by d3_r1_large (the same physics in a larger box); " + m.note;
+          }
       cmp.insert(cmp.end(), more.begin(), more.end());
     }
     results.push_back(std::move(cr));

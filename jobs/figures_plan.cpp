@@ -100,7 +100,9 @@ struct Long3D {
   double t_max;
   std::uint64_t realisations;
 };
-std::vector<Long3D> long3d_cases() { return {{0.1, 4000000, 1e6, 16}, {0.5, 4000000, 1e6, 16}}; }
+std::vector<Long3D> long3d_cases() {
+  return {{0.1, 4000000, 1e6, 16}, {0.5, 4000000, 1e6, 16}};
+}
 
 // The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
@@ -205,6 +207,9 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
     e.physics.t_max = s.t_max;
     e.realisations = s.realisations;
     add("d3_r1_large", e, CaseRole::Elastic3D);
+    for (auto& c : plan.cases)
+      c.superseded_for_alpha =
+          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.restitution >= 1;
   }
   if (long_3d) {
     for (const Long3D& s : long3d_cases()) {

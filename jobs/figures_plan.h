@@ -25,6 +25,9 @@ struct FigureCase {
   EnsembleSpec spec;
   CaseRole role = CaseRole::Paper;
   bool delta_scan = false;  // role == DeltaScan
+  // The small 3D r = 1 case beside d3_r1_large: kept for Fig. 3, its alpha readings not counted
+  // (its box is too small for the late elastic blast).
+  bool superseded_for_alpha = false;
 };
 
 struct FiguresPlan {

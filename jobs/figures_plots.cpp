@@ -156,8 +156,8 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
       // Colour by r, open points in 2D and filled ones in 3D.
       // 3D takes colours 4-6, so that no 2D and 3D curve share one.
       const std::string title = " lc " + std::to_string(colour + (d == 3 ? 3 : 0)) + " pt " +
-                                (d == 2 ? "6" : "7") +
-                                " title 'd = " + std::to_string(d) + ", r = " + rtext(r) + "'";
+                                (d == 2 ? "6" : "7") + " title 'd = " + std::to_string(d) +
+                                ", r = " + rtext(r) + "'";
       plot_n += std::string(plot_n.empty() ? "plot " : ", \\\n     ") +
                 "'fig3_active_energy.csv' skip 1 using " + sel + ":5" + title;
       plot_e += std::string(plot_e.empty() ? "plot " : ", \\\n     ") +
@@ -278,8 +278,8 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       break;
     }
   std::string gp = gnuplot_preamble(base, 1500, 900);
-  gp += "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) +
-        "]\n";
+  gp +=
+      "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) + "]\n";
   gp +=
       "set multiplot layout 2,3 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
@@ -304,8 +304,8 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       }
     if (ylo < yhi) {
       const double pad = std::max(0.3 * (yhi - ylo), 0.03);
-      gp += "set yrange [" + format_double(ylo - pad) + ":" + format_double(yhi + 1.5 * pad) +
-            "]\n";
+      gp +=
+          "set yrange [" + format_double(ylo - pad) + ":" + format_double(yhi + 1.5 * pad) + "]\n";
     } else {
       gp += "set yrange [*:*]\n";
     }

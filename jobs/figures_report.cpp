@@ -110,13 +110,12 @@ std::string plateau_markdown(const std::vector<CaseResult>& results) {
   for (const auto& c : results)
     for (const auto& e : c.fits.exponents) {
       md << "| " << c.plan->name << " | " << e.quantity << " | ";
-      const std::string corrected =
-          " | " + figure_number(e.corrected.b, 4) + " | [" + figure_number(e.corrected.ci_lo, 4) +
-          ", " + figure_number(e.corrected.ci_hi, 4) + "] | " +
-          figure_number(e.corrected.omega, 2) + " |\n";
+      const std::string corrected = " | " + figure_number(e.corrected.b, 4) + " | [" +
+                                    figure_number(e.corrected.ci_lo, 4) + ", " +
+                                    figure_number(e.corrected.ci_hi, 4) + "] | " +
+                                    figure_number(e.corrected.omega, 2) + " |\n";
       if (!e.plateau.found) {
-        md << "no plateau | - | " << figure_number(e.theory, 3) << " | - | - | - | -"
-           << corrected;
+        md << "no plateau | - | " << figure_number(e.theory, 3) << " | - | - | - | -" << corrected;
         continue;
       }
       md << "[" << figure_number(e.plateau.window.t_lo, 3) << ", "
@@ -145,17 +144,20 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
   Json& cases = j["cases"] = Json::array();
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
-    cases.push_back({{"name", c.plan->name},
-                     {"d", p.dim},
-                     {"r", p.restitution},
-                     {"particles", p.particles},
-                     {"t_max", p.t_max},
-                     {"realisations", c.sums.count()},
-                     {"wall_seconds", c.wall},
-                     {"t_c1", c.fits.tc1.time},
-                     {"t_c1_theory_b", c.fits.tc1_theory_b.time},
-                     {"t_c2", c.fits.tc2.time},
-                     {"folder", "ensembles/" + c.plan->name}});
+    cases.push_back(
+        {{"name", c.plan->name},
+         {"d", p.dim},
+         {"r", p.restitution},
+         {"particles", p.particles},
+         {"t_max", p.t_max},
+         {"realisations", c.sums.count()},
+         {"wall_seconds", c.wall},
+         {"t_c1", c.fits.tc1.time},
+         {"t_c1_theory_b", c.fits.tc1_theory_b.time},
+         // Read only in the delta scan (the run table's rule).
+         {"t_c2", c.plan->role == CaseRole::DeltaScan ? Json(c.fits.tc2.time) : Json(nullptr)},
+         {"superseded_for_alpha", c.plan->superseded_for_alpha},
+         {"folder", "ensembles/" + c.plan->name}});
   }
   j["comparisons"] = comparisons_json(cmp);
   j["problems"] = problems;
@@ -176,19 +178,16 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << "| case | d | r | delta | N | t_max (sim) | t_max (paper) | realisations | wall (s) | "
         "t_c1 (sim t) | t_c1, b = theory (sim t) | t_c2 (sim t) | R_front / (L/2) at t_max |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  bool large_elastic = false;
-  for (const auto& c : results) large_elastic |= c.plan->role == CaseRole::Elastic3D;
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
-    const bool superseded = large_elastic && c.plan->role == CaseRole::Paper && p.dim == 3 &&
-                            p.restitution >= 1;
+    const bool superseded = c.plan->superseded_for_alpha;
     // t_c2 is read only where the delta scan puts it inside the run; elsewhere the slope rule
     // fires on pre-asymptotic slopes leaving their band (3D r = 0.9), which is no crossover.
     const bool scan = c.plan->role == CaseRole::DeltaScan;
     md << "| " << c.plan->name << (superseded ? " (superseded by d3_r1_large)" : "") << " | "
-       << p.dim << " | " << format_number(p.restitution) << " | "
-       << format_number(p.cutoff) << " | " << p.particles << " | " << figure_number(p.t_max)
-       << " | " << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
+       << p.dim << " | " << format_number(p.restitution) << " | " << format_number(p.cutoff)
+       << " | " << p.particles << " | " << figure_number(p.t_max) << " | "
+       << figure_number(p.paper_time(p.t_max)) << " | " << c.sums.count() << " | "
        << figure_number(c.wall, 3) << " | " << crossover_cell(c.fits.tc1) << " | "
        << crossover_cell(c.fits.tc1_theory_b) << " | "
        << (scan ? crossover_cell(c.fits.tc2) : std::string("-")) << " | "
@@ -198,7 +197,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "theory): the same with E_t's exponent fixed at the theory's; t_c2: the slope rule's "
         "crossover of <N_t>, read only in the delta scan (see Definitions; \"-\": not within "
         "the run, the Notes say why). Times in simulation units unless a column says paper (the "
-        "paper's unit is 1 / (v_0 n^{1/d}): t_paper = t v_0 n^{1/d}). The small d3_r1 is kept for Fig. 3 and "
+        "paper's unit is 1 / (v_0 n^{1/d}): t_paper = t v_0 n^{1/d}). The small d3_r1 is kept for "
+        "Fig. 3 and "
         "superseded for alpha by d3_r1_large. R_front / (L/2): how far the front (half the "
         "ambient density) has come towards the nearest periodic image of the kicked site; the "
         "plan keeps it below ~0.8 so that the front does not wrap.\n";

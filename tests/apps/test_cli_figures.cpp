@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "analysis/json.h"
 #include "tests/apps/cli_test_util.h"
 
 namespace gs {
@@ -58,16 +59,36 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
         "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2",
         "band packing (typical, cells of 10)", "band number density (typical, cells of 10)",
         "alpha best collapsing P(R,t)", "alpha best collapsing P(v,t)",
-        "A(t) constant: d ln A / d ln t, last half decade",
-        "band packing (upper, 90% quantile)", "band packing (densest cell, shifted grids)",
-        "band packing (local, 90% quantile)", "band number density (shell peak, no pi/4)",
-        "shell peak density / ambient", "A(t_max)"})
+        "A(t) constant: d ln A / d ln t, last half decade", "band packing (upper, 90% quantile)",
+        "band packing (densest cell, shifted grids)", "band packing (local, 90% quantile)",
+        "band number density (shell peak, no pi/4)", "shell peak density / ambient", "A(t_max)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
+  // One reading per number: the small d3_r1's alpha rows are superseded by d3_r1_large's and
+  // not counted; t_c2 is a crossover only where the delta scan puts it inside the run.
+  const Json j = Json::parse(summary);
+  int superseded = 0, large = 0;
+  for (const Json& c : j.at("comparisons")) {
+    if (!c.at("quantity").get<std::string>().starts_with("alpha from")) continue;
+    if (c.at("case") == "d3_r1") {
+      EXPECT_FALSE(c.at("counted").get<bool>()) << c.dump();
+      ++superseded;
+    }
+    if (c.at("case") == "d3_r1_large" && c.at("counted").get<bool>()) ++large;
+  }
+  EXPECT_GT(superseded, 0);
+  EXPECT_GT(large, 0);
+  for (const Json& c : j.at("cases")) {
+    const bool scan = c.at("name").get<std::string>().find("_delta") != std::string::npos;
+    if (!scan) {
+      EXPECT_TRUE(c.at("t_c2").is_null()) << c.dump();
+    }
+    EXPECT_EQ(c.at("superseded_for_alpha").get<bool>(), c.at("name") == "d3_r1") << c.dump();
+  }
   const std::string report = read_file(dir / "report.md");
-  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
-                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary",
-                        "numbers compared", "Sensitivity", "Plateaus and their drift",
-                        "corrected b"})
+  for (const char* q :
+       {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
+        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary", "numbers compared",
+        "Sensitivity", "Plateaus and their drift", "corrected b"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
