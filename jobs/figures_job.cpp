@@ -156,7 +156,7 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
   }
   cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
-  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall};
+  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, plan.fig1};
   write_figures_summary(dir, run, results, cmp, problems);
   write_figures_report(dir, run, results, x, cmp, problems);
   out.wall = run.wall;

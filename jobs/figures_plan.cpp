@@ -1,7 +1,9 @@
 #include "jobs/figures_plan.h"
 
 #include <cstdio>
+#include <iterator>
 
+#include "analysis/paper.h"
 #include "sim/format.h"
 
 namespace gs::jobs {
@@ -238,11 +240,26 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
       add(std::string("d2_r0.1_delta").append(format_number(delta)), e, CaseRole::DeltaScan);
     }
   }
-  const std::vector<RunSize> plane = sizes_of(mode, 2);
-  const double T = plane.front().t_max;  // r = 0.1
-  // The paper's Fig. 1(a) times 5000, 10000, 20000, 50000 as fractions of the last.
-  plan.fig1a_times = {T / 10, T / 5, T * 2 / 5, T};
-  plan.fig1b_time = plane.back().t_max;  // r = 1
+  // Fig. 1 from the 2D r = 0.1 and r = 1 cases' physics (cutoff included).
+  FiguresPlan::Fig1& f = plan.fig1;
+  f.a = find_case(plan, 2, 0.1)->spec.physics;
+  f.b = find_case(plan, 2, 1.0)->spec.physics;
+  f.a.realisation = f.b.realisation = 0;
+  f.paper_times = mode != FiguresMode::Tiny;
+  if (f.paper_times) {
+    // The paper's box. Measured at r = 1, t_paper = 25000: the outermost active disc at 433 of
+    // L/2 = 500 from the centre of mass, none wrapped, 9 CPU-s; r = 0.1 spreads far less.
+    f.a.particles = f.b.particles = kFig1Particles;
+    for (double t : kFig1aPaperTimes) f.a_times.push_back(t / f.a.paper_time(1.0));
+    f.b_time = kFig1bPaperTime / f.b.paper_time(1.0);
+  } else {
+    // The paper's times in ratio, ending at the tiny run's t_max (its box holds no more).
+    const double T = f.a.t_max, last = std::end(kFig1aPaperTimes)[-1];
+    for (double t : kFig1aPaperTimes) f.a_times.push_back(T * t / last);
+    f.b_time = f.b.t_max;
+  }
+  f.a.t_max = f.a_times.back();
+  f.b.t_max = f.b_time;
   return plan;
 }
 
