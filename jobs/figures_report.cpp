@@ -133,14 +133,14 @@ std::string fig1_markdown(const FiguresPlan::Fig1& f) {
   auto times = [](const PhysicsConfig& p, const std::vector<double>& ts) {
     std::string sim, paper;
     for (double t : ts) {
-      sim += (sim.empty() ? "" : ", ") + figure_number(t);
-      paper += (paper.empty() ? "" : ", ") + figure_number(p.paper_time(t));
+      sim += (sim.empty() ? "" : ", ") + figure_number(t, 6);
+      paper += (paper.empty() ? "" : ", ") + figure_number(p.paper_time(t), 6);
     }
     return "t = " + sim + " (t_paper = " + paper + ")";
   };
   std::string paper_times;
   for (double t : kFig1aPaperTimes)
-    paper_times += (paper_times.empty() ? "" : ", ") + figure_number(t);
+    paper_times += (paper_times.empty() ? "" : ", ") + figure_number(t, 6);
   std::ostringstream md;
   md << "- fig1a_overlay_r0.1.png: the active particles of one 2D r = 0.1 realisation of "
      << f.a.particles << " discs (box side " << figure_number(f.a.box()) << ") at "
@@ -150,7 +150,7 @@ std::string fig1_markdown(const FiguresPlan::Fig1& f) {
                        : "This mode's box is smaller than the paper's (" +
                              std::to_string(kFig1Particles) + " discs), so its times are the "
                              "paper's (t_paper = " + paper_times + " and " +
-                             figure_number(kFig1bPaperTime) + ") scaled to its r = 0.1 run. ")
+                             figure_number(kFig1bPaperTime, 6) + ") scaled to its r = 0.1 run. ")
      << "The scale bar is in particle diameters, the paper's length unit; each colour's label "
         "gives t (simulation units) and t_paper.\n";
   return md.str();
@@ -256,7 +256,7 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
         "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
         "theory, agrees}.\n"
-        "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
+        "Restyle a plot by editing its .gp script and running gnuplot on it in this folder (`gnuplot fig2_anisotropy.gp`).\n";
   write_file_atomic(dir / "report.md", md.str());
 }
 
