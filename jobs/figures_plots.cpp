@@ -216,7 +216,7 @@ std::string fig_collapse(const CaseResult& c, const Out& out, const std::string&
   std::string pr, pv;
   for (double ts : c.plan->spec.snapshot_times) {
     const std::string sel = "($1==" + format_number(ts) + " ? ";
-    const std::string title = "'t = " + figure_number(ts) + " (t_{paper} = " +
+    const std::string title = "'t = " + figure_number(ts, 6) + " (t_{paper} = " +
                               format_number(std::round(p.paper_time(ts))) + ")'";
     pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base +
           ".csv' skip 1 using " + sel + "$3 : 1/0):4 title " + title;
@@ -235,11 +235,11 @@ std::string fig_collapse(const CaseResult& c, const Out& out, const std::string&
         "} P(R,t)'\nset key top left\nset offsets 0, 0, graph 0.3, 0\n" +
         filled_xrange(t, "x_R", "f1", 1e-2) + pr + "\n";
   // Log y: the exponential tail down to 1e-4 of the peak, below which a bin holds a few
-  // particles of one realisation.
+  // particles of one realisation; the key bottom left, below the rise (the peak is at the top).
   gp += "set title '(b) t^{α-1} P(v,t) against v t^{1-α}'\nset xlabel 'v t^{" + bs +
         "} (simulation units)'\nset ylabel 't^{-" + bs +
         "} P(v,t)'\nset offsets 0, 0, 0, 0\nset logscale y\nset format y '10^{%L}'\n"
-        "set key top right\n" +
+        "set key bottom left\n" +
         filled_xrange(t, "x_v", "f2", 1e-4) + pv + "\n";
   gp += "unset multiplot\n";
   return out.plot(base + ".gp", gp);

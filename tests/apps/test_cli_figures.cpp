@@ -82,7 +82,9 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
         "alpha best collapsing P(R,t)", "alpha best collapsing P(v,t)",
         "A(t) constant: d ln A / d ln t, last half decade", "band packing (upper, 90% quantile)",
         "band packing (densest cell, shifted grids)", "band packing (local, 90% quantile)",
-        "band number density (shell peak, no pi/4)", "shell peak density / ambient", "A(t_max)"})
+        "band number density (shell peak, no pi/4)", "shell peak density / ambient", "A(t_max)",
+        "alpha from E_t, with a correction to scaling",
+        "alpha from R_t, with a correction to scaling"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   // One reading per number: the small d3_r1's alpha rows are superseded by d3_r1_large's and
   // not counted; t_c2 is a crossover only where the delta scan puts it inside the run.
@@ -140,7 +142,8 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* q :
        {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
         "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary", "numbers compared",
-        "Sensitivity", "Plateaus and their drift", "corrected b"})
+        "Sensitivity", "Plateaus and their drift", "corrected b",
+        "The offset of E_t and R_t from alpha = 1/3 in 2D"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
