@@ -8,6 +8,7 @@
 
 #include "analysis/band_measures.h"
 #include "analysis/effective_exponent.h"
+#include "analysis/ensemble_fits.h"
 #include "analysis/ensemble_runner.h"
 #include "analysis/paper.h"
 #include "analysis/shock.h"
@@ -39,6 +40,21 @@ std::vector<std::vector<double>> ensemble_of(std::span<const double> t, F f, int
       curve[i] = amp * f(t[i]) * (1 + noise * rng.normal());
   }
   return c;
+}
+
+TEST(AlphaFromExponent, InvertsEachScalingLaw) {
+  // The theory's exponents of each quantity give the theory's alpha back, in 2D and 3D.
+  for (int d : {2, 3}) {
+    const double a = 1.0 / (d + 1);
+    EXPECT_NEAR(alpha_from_exponent("N_t", d, a * d), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("E_t", d, a * d + 2 * a - 2), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("R_t", d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("R_front", d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("dR_front/dt", d, a - 1), a, 1e-15);
+  }
+  // E_t of the elastic blast: alpha = 2/(d+2) conserves energy (exponent 0).
+  EXPECT_NEAR(alpha_from_exponent("E_t", 2, 0), 0.5, 1e-15);
+  EXPECT_TRUE(std::isnan(alpha_from_exponent("C_t", 2, 1.5)));  // no alpha of its own
 }
 
 TEST(EffectiveExponent, FindsThePlateauOfACorrectionToScaling) {
