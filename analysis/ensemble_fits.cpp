@@ -33,8 +33,8 @@ std::string window_text(const Window& w) {
 void implied_alpha(ExponentFit& e, int d, double half) {
   e.alpha = alpha_from_exponent(e.quantity, d, e.fit.exponent);
   // The maps are affine: the half width scales by their slope.
-  e.alpha_uncertainty = half * (alpha_from_exponent(e.quantity, d, 1) -
-                                alpha_from_exponent(e.quantity, d, 0));
+  e.alpha_uncertainty =
+      half * (alpha_from_exponent(e.quantity, d, 1) - alpha_from_exponent(e.quantity, d, 0));
 }
 
 }  // namespace
@@ -51,11 +51,11 @@ void check_window(const EnsembleSpec& spec, const Window& w) {
   const auto t = sample_times(spec);
   if (!(w.t_lo > 0 && w.t_hi > w.t_lo))
     throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
-                    ": need 0 < T1 < T2");
+                     ": need 0 < T1 < T2");
   if (w.t_lo < t.front() || w.t_hi > t.back())
     throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
-                    " lies outside the data [" + format_number(t.front()) + ", " +
-                    format_number(t.back()) + "]");
+                     " lies outside the data [" + format_number(t.front()) + ", " +
+                     format_number(t.back()) + "]");
 }
 
 double EnsembleFits::last_scalar(const char* name) const {

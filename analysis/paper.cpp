@@ -108,8 +108,8 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
     c.source = e.theory_source;
     c.note = "local slope fitted as b + k t^-omega over [" + fmt(k.window.t_lo) + ", " +
              fmt(k.window.t_hi) + "]: b = " + fmt(k.b) + ", omega = " + fmt(k.omega, 2) +
-             (k.note.empty() ? "" : " (" + k.note + ")") + "; the plateau's alpha " +
-             fmt(e.alpha) + "; 95% interval over the resampled slopes";
+             (k.note.empty() ? "" : " (" + k.note + ")") + "; the plateau's alpha " + fmt(e.alpha) +
+             "; 95% interval over the resampled slopes";
     out.push_back(c);
   }
   {

@@ -207,15 +207,14 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
      << (o.long_3d ? " --long" : "") << "`\n\n"
      << "The whole job run with " << o.sample << " realisations per case on " << o.threads
-     << " threads, each stage timed: a case's realisations scaled to the plan by M / "
-     << o.sample << " in rounds of " << o.threads
+     << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
+     << " in rounds of " << o.threads
      << " (ceil(M / threads) rounds); its fits, the phi1 and phi2 readings, Fig. 1 and the "
         "plots as measured (the fits and readings resample on the time grid and cost about the "
         "same for 2 realisations as for 16: --quick estimated 250 CPU-s, ran 242). CPU time "
         "counts every thread and gnuplot. "
         "'Quiet': the wall time on an otherwise idle machine with "
-     << o.threads
-     << " cores, from CPU time; 'this load': from the wall time measured now.\n\n"
+     << o.threads << " cores, from CPU time; 'this load': from the wall time measured now.\n\n"
      << table.str() << "\n**Total: " << figure_number(total_cpu) << " CPU-s; wall on a quiet "
      << o.threads << "-core machine " << figure_number(total_quiet) << " s ("
      << figure_number(total_quiet / 60, 3) << " min); at this load " << figure_number(total)

@@ -43,8 +43,11 @@ struct RunSize {
 //
 // --full has the paper's sizes (2.5e5 discs, 2e6 spheres; 4e6 for 3D r = 0.7-0.85) but not its
 // ~100 realisations per case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D
-// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. Measured on a quiet machine: 851 s wall
-// (1553 CPU-s), of which 3D r = 0.7, 0.8, 0.85 take 63, 176, 159 s; --estimate: 823 s.
+// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. --estimate of this plan (issue 33, sample 2,
+// measured at load ~7): 2641 CPU-s, 22.6 min on a quiet 2-core machine, of which 3D r = 0.7,
+// 0.8, 0.85 and the 4e6-sphere elastic blast 159, 438, 372 and 166 CPU-s, 2D 930; realisations
+// 2-5 of 3D r = 0.85 cost 13% more than the sample's 0-1. The last --full run (before 2D's
+// cutoff went to 1e-5 and r = 0.95 was added) took 2931 CPU-s, 44 min wall on a shared machine.
 std::vector<RunSize> sizes_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:

@@ -216,12 +216,12 @@ std::string fig_collapse(const CaseResult& c, const Out& out, const std::string&
   std::string pr, pv;
   for (double ts : c.plan->spec.snapshot_times) {
     const std::string sel = "($1==" + format_number(ts) + " ? ";
-    const std::string title = "'t = " + figure_number(ts, 6) + " (t_{paper} = " +
-                              format_number(std::round(p.paper_time(ts))) + ")'";
-    pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base +
-          ".csv' skip 1 using " + sel + "$3 : 1/0):4 title " + title;
-    pv += std::string(pv.empty() ? "plot " : ", \\\n     ") + "'" + base +
-          ".csv' skip 1 using " + sel + "$5 : 1/0):($6 > 0 ? $6 : 1/0) title " + title;
+    const std::string title = "'t = " + figure_number(ts, 6) +
+                              " (t_{paper} = " + format_number(std::round(p.paper_time(ts))) + ")'";
+    pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
+          sel + "$3 : 1/0):4 title " + title;
+    pv += std::string(pv.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
+          sel + "$5 : 1/0):($6 > 0 ? $6 : 1/0) title " + title;
   }
   const std::string as = p.dim == 2 ? "1/3" : "1/4";
   const std::string bs = p.dim == 2 ? "2/3" : "3/4";  // 1 - alpha

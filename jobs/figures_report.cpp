@@ -146,11 +146,13 @@ std::string fig1_markdown(const FiguresPlan::Fig1& f) {
      << f.a.particles << " discs (box side " << figure_number(f.a.box()) << ") at "
      << times(f.a, f.a_times) << ", overlaid (Fig. 1a); fig1b_elastic_r1.png: 2D r = 1, "
      << f.b.particles << " discs, at " << times(f.b, {f.b_time}) << " (Fig. 1b). "
-     << (f.paper_times ? "These are the paper's times and box. "
-                       : "This mode's box is smaller than the paper's (" +
-                             std::to_string(kFig1Particles) + " discs), so its times are the "
-                             "paper's (t_paper = " + paper_times + " and " +
-                             figure_number(kFig1bPaperTime, 6) + ") scaled to its r = 0.1 run. ")
+     << (f.paper_times
+             ? "These are the paper's times and box. "
+             : "This mode's box is smaller than the paper's (" + std::to_string(kFig1Particles) +
+                   " discs), so its times are the "
+                   "paper's (t_paper = " +
+                   paper_times + " and " + figure_number(kFig1bPaperTime, 6) +
+                   ") scaled to its r = 0.1 run. ")
      << "The scale bar is in particle diameters, the paper's length unit; each colour's label "
         "gives t (simulation units) and t_paper.\n";
   return md.str();
@@ -256,7 +258,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
         "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
         "theory, agrees}.\n"
-        "Restyle a plot by editing its .gp script and running gnuplot on it in this folder (`gnuplot fig2_anisotropy.gp`).\n";
+        "Restyle a plot by editing its .gp script and running gnuplot on it in this folder "
+        "(`gnuplot fig2_anisotropy.gp`).\n";
   write_file_atomic(dir / "report.md", md.str());
 }
 

@@ -75,16 +75,27 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
                           "\"theory\"", "\"agrees\"", "\"wall_seconds\"", "\"figure\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q :
-       {"alpha from R_t", "alpha from N_t", "alpha from R_front", "alpha from dR_front/dt",
-        "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2",
-        "band packing (typical, cells of 10)", "band number density (typical, cells of 10)",
-        "alpha best collapsing P(R,t)", "alpha best collapsing P(v,t)",
-        "A(t) constant: d ln A / d ln t, last half decade", "band packing (upper, 90% quantile)",
-        "band packing (densest cell, shifted grids)", "band packing (local, 90% quantile)",
-        "band number density (shell peak, no pi/4)", "shell peak density / ambient", "A(t_max)",
-        "alpha from E_t, with a correction to scaling",
-        "alpha from R_t, with a correction to scaling"})
+  for (const char* q : {"alpha from R_t",
+                        "alpha from N_t",
+                        "alpha from R_front",
+                        "alpha from dR_front/dt",
+                        "collision exponent",
+                        "v_rms^2 = 2E/N (identity)",
+                        "phi1",
+                        "phi2",
+                        "band packing (typical, cells of 10)",
+                        "band number density (typical, cells of 10)",
+                        "alpha best collapsing P(R,t)",
+                        "alpha best collapsing P(v,t)",
+                        "A(t) constant: d ln A / d ln t, last half decade",
+                        "band packing (upper, 90% quantile)",
+                        "band packing (densest cell, shifted grids)",
+                        "band packing (local, 90% quantile)",
+                        "band number density (shell peak, no pi/4)",
+                        "shell peak density / ambient",
+                        "A(t_max)",
+                        "alpha from E_t, with a correction to scaling",
+                        "alpha from R_t, with a correction to scaling"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   // One reading per number: the small d3_r1's alpha rows are superseded by d3_r1_large's and
   // not counted; t_c2 is a crossover only where the delta scan puts it inside the run.
@@ -109,7 +120,8 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   }
   // Figs. 4 and 5 in one unit system, said on the axes: the CSV's t_paper is t v_0 n^(1/d)
   // (n = 0.25), the x labels say simulation units, and the x-range is set from the data.
-  for (const auto& [base, d] : {std::pair{"fig4_collapse_2d", 2}, std::pair{"fig5_collapse_3d", 3}}) {
+  for (const auto& [base, d] :
+       {std::pair{"fig4_collapse_2d", 2}, std::pair{"fig5_collapse_3d", 3}}) {
     const Table t = read_csv(dir / (std::string(base) + ".csv"));
     ASSERT_GT(t.rows(), 0u) << base;
     for (std::size_t i = 0; i < t.rows(); ++i)
@@ -139,11 +151,10 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
 
   const std::string report = read_file(dir / "report.md");
   EXPECT_TRUE(names_only_existing_files(report, dir)) << "report.md";
-  for (const char* q :
-       {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
-        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary", "numbers compared",
-        "Sensitivity", "Plateaus and their drift", "corrected b",
-        "The offset of E_t and R_t from alpha = 1/3 in 2D"})
+  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
+                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary",
+                        "numbers compared", "Sensitivity", "Plateaus and their drift",
+                        "corrected b", "The offset of E_t and R_t from alpha = 1/3 in 2D"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
