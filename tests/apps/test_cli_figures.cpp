@@ -158,6 +158,33 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
+TEST(CliFigures, EstimateTimesEveryStageOfTheJob) {
+  // --estimate runs the job on a sample and times each stage: the cases, the phi1/phi2
+  // readings, and Fig. 1 with the plots; its CPU total is their sum, and it leaves no figures.
+  const auto dir = scratch_dir("estimate");
+  const auto r =
+      grainshock("figures --tiny --estimate --sample 1 --threads 2 --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(read_file(dir / "estimate.json"));
+  double sum =
+      j.at("readings_cpu_seconds").get<double>() + j.at("figures_cpu_seconds").get<double>();
+  EXPECT_GT(j.at("figures_cpu_seconds").get<double>(), 0);  // Fig. 1's runs, gnuplot
+  for (const Json& c : j.at("cases")) {
+    EXPECT_GT(c.at("cpu_seconds_per_realisation").get<double>(), 0) << c.dump();
+    sum += c.at("estimated_cpu_seconds").get<double>();
+  }
+  EXPECT_EQ(j.at("cases").size(), 20u);  // every case of the tiny plan
+  EXPECT_NEAR(j.at("estimated_cpu_seconds").get<double>(), sum, 1e-9 * sum);
+  // On 2 threads the realisations share the cores; the serial stages do not.
+  EXPECT_LE(j.at("estimated_wall_seconds_from_cpu").get<double>(),
+            j.at("estimated_cpu_seconds").get<double>());
+  const std::string md = read_file(dir / "estimate.md");
+  for (const char* q : {"Fig. 1", "phi1 and phi2 readings", "CPU-s", "quiet 2-core machine"})
+    EXPECT_NE(md.find(q), std::string::npos) << q;
+  EXPECT_FALSE(fs::exists(dir / "estimate_sample"));
+  EXPECT_FALSE(fs::exists(dir / "report.md"));
+}
+
 TEST(CliFigures, BadInputIsRefusedInOneLine) {
   const auto dir = scratch_dir("bad");
   auto r = grainshock("figures --tiny --full --out " + dir.string());
