@@ -239,7 +239,11 @@ void make_stamps(Stamps& st, float r, double ppu) {
 }
 
 // A disc from its stamp: the centre's phase picks the coverage, the picture's pixels are
-// blended in integers, (p (255 - a) + c a + 127) / 255, which is c where the disc covers fully.
+// blended in integers, (p (255 - a) + c a + 127) / 255, which is c where the disc covers fully
+// and p where it does not cover at all, so the stamp's box is blended without a branch. The
+// channels are blended two at a time in 16-bit lanes of one word (at most 65152 in a lane, so
+// no carry crosses), and x / 255 is (x + (x >> 8) + 1) >> 8 for every x up to 65152 (checked
+// for all p, c, a). The alpha byte is kept.
 void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int row0, int row1) {
   const double X = img.width / 2.0 + d.x * ppu, Y = img.height / 2.0 - d.y * ppu;
   const double fX = std::floor(X), fY = std::floor(Y);
@@ -253,17 +257,21 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
   const int y0 = std::max(row0, iy + st.lo + b[2]), y1 = std::min(row1 - 1, iy + st.lo + b[3]);
   if (x0 > x1) return;
   const std::uint8_t* alpha = &st.alpha[phase * st.size * st.size];
-  const unsigned c0 = d.rgba[0], c1 = d.rgba[1], c2 = d.rgba[2];
+  constexpr std::uint32_t kLanes = 0x00ff00ffu, kHalf = 0x007f007fu, kOne = 0x00010001u;
+  const std::uint32_t c_rb = d.rgba[0] | std::uint32_t(d.rgba[2]) << 16, c_ga = d.rgba[1];
   for (int y = y0; y <= y1; ++y) {
     const std::uint8_t* a = alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo);
     std::uint8_t* p = img.pixel(x0, y);
     for (int x = x0; x <= x1; ++x, p += 4) {
-      const unsigned w = *a++;
-      if (w == 0) continue;
-      const unsigned v = 255 - w;
-      p[0] = static_cast<std::uint8_t>((p[0] * v + c0 * w + 127) / 255);
-      p[1] = static_cast<std::uint8_t>((p[1] * v + c1 * w + 127) / 255);
-      p[2] = static_cast<std::uint8_t>((p[2] * v + c2 * w + 127) / 255);
+      std::uint32_t was;
+      std::memcpy(&was, p, 4);
+      const std::uint32_t w = *a++, v = 255 - w;
+      std::uint32_t rb = (was & kLanes) * v + c_rb * w + kHalf;
+      std::uint32_t ga = (was >> 8 & kLanes) * v + c_ga * w + kHalf;
+      rb = (rb + (rb >> 8 & kLanes) + kOne) >> 8 & kLanes;
+      ga = (ga + (ga >> 8 & kLanes) + kOne) >> 8 & kLanes;
+      const std::uint32_t out = rb | (ga << 8 & 0x0000ff00u) | (was & 0xff000000u);
+      std::memcpy(p, &out, 4);
     }
   }
 }
