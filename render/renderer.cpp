@@ -216,7 +216,8 @@ void make_stamps(Stamps& st, float r, double ppu) {
   st.lo = -reach;
   st.size = 2 * reach + 1;
   const auto cells = static_cast<std::size_t>(st.size) * st.size;
-  st.alpha.assign(cells * kPhases * kPhases, 0);
+  // Four bytes over the end: a row of four pixels reads its coverage as one word.
+  st.alpha.assign(cells * kPhases * kPhases + 4, 0);
   st.box.assign(kPhases * kPhases, {255, 0, 255, 0});
   for (int qy = 0; qy < kPhases; ++qy)
     for (int qx = 0; qx < kPhases; ++qx) {
@@ -257,6 +258,34 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
   const int y0 = std::max(row0, iy + st.lo + b[2]), y1 = std::min(row1 - 1, iy + st.lo + b[3]);
   if (x0 > x1) return;
   const std::uint8_t* alpha = &st.alpha[phase * st.size * st.size];
+  if (x1 - x0 < 4 && x0 + 4 <= img.width) {
+    // Up to four pixels a row (every disc below 1.5 px): the row's four pixels blended at once
+    // in 16-bit lanes, by the same formula; coverage 0 beyond the box leaves those as they were.
+    // Alpha is blended with 255 here, which keeps the splat's opaque picture opaque.
+    using U8x16 = std::uint8_t __attribute__((vector_size(16)));
+    using U16x16 = std::uint16_t __attribute__((vector_size(32)));
+    const std::uint32_t keep = 0xffffffffu >> (8 * (3 - (x1 - x0)));
+    const U16x16 colour = {d.rgba[0], d.rgba[1], d.rgba[2], 255, d.rgba[0], d.rgba[1],
+                           d.rgba[2], 255,       d.rgba[0], d.rgba[1], d.rgba[2], 255,
+                           d.rgba[0], d.rgba[1], d.rgba[2], 255};
+    for (int y = y0; y <= y1; ++y) {
+      std::uint32_t w4;
+      std::memcpy(&w4, alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo), 4);
+      w4 &= keep;
+      U8x16 wb{};
+      std::memcpy(&wb, &w4, 4);
+      const U16x16 w = __builtin_convertvector(
+          __builtin_shufflevector(wb, wb, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3), U16x16);
+      std::uint8_t* p = img.pixel(x0, y);
+      U8x16 was;
+      std::memcpy(&was, p, 16);
+      U16x16 x = __builtin_convertvector(was, U16x16) * (255 - w) + colour * w + 127;
+      x = (x + (x >> 8) + 1) >> 8;
+      const U8x16 out = __builtin_convertvector(x, U8x16);
+      std::memcpy(p, &out, 16);
+    }
+    return;
+  }
   constexpr std::uint32_t kLanes = 0x00ff00ffu, kHalf = 0x007f007fu, kOne = 0x00010001u;
   const std::uint32_t c_rb = d.rgba[0] | std::uint32_t(d.rgba[2]) << 16, c_ga = d.rgba[1];
   for (int y = y0; y <= y1; ++y) {
