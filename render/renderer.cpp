@@ -37,11 +37,8 @@ struct Stamps {
 };
 
 struct SplatBuffers {
-  std::vector<Stamps> stamps;                      // one per radius of this frame's discs
-  std::vector<std::array<std::uint16_t, 2>> span;  // per disc: its first and last band
-  std::vector<std::uint32_t> count, fill;          // per thread and band
-  std::vector<std::uint32_t> start;                // per band: where its list begins
-  std::vector<Sprite> binned;                      // the discs, band after band
+  std::vector<Stamps> stamps;               // one per radius of this frame's discs
+  std::vector<std::vector<Sprite>> binned;  // per thread and band: its discs, in drawing order
 };
 
 // 2D discs as point sprites: llvmpipe rasterizes a point as one rectangle, where a quad costs
@@ -308,8 +305,9 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
 // Discs in random order write all over a picture larger than the caches, so they are first
 // copied into bands of 32 rows (in drawing order, a disc across two bands into both), and each
 // band, filled with the background, is drawn from its own contiguous list with every write close
-// by. The threads each sort their consecutive piece of the discs (placed after the pieces
-// before it, so each band's list is in drawing order) and then take bands as they come free:
+// by. The threads each sort their consecutive piece of the discs into lists of their own, one
+// per band, in one pass (a band is drawn from the first thread's list, then the second's..., so
+// in drawing order), and then take bands as they come free:
 // the pixels are the same whatever the threads, since bands partition them and each pixel sees
 // its discs in drawing order.
 void splat_discs(Image& img, const std::uint8_t background[4], const std::vector<Sprite>& discs,
@@ -318,13 +316,14 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
   const int bands = (img.height + kBand - 1) / kBand;
   const std::size_t n = discs.size();
   const int threads = frame_threads(std::max<std::size_t>(n, img.rgba.size() / 16), 20000);
-  buf.span.resize(n);
-  buf.count.assign(static_cast<std::size_t>(threads) * bands, 0);
+  // Each thread's list for each band is kept from frame to frame: no page faults for new ones.
+  buf.binned.resize(static_cast<std::size_t>(threads) * bands);
   // The radii of the discs, kMaxStampRadii + 1 at most per thread (then there are too many).
   std::vector<std::vector<float>> radii(threads);
   run_on_threads(threads, [&](int t) {
     const auto [first, last] = piece(n, threads, t);
-    std::uint32_t* count = &buf.count[static_cast<std::size_t>(t) * bands];
+    std::vector<Sprite>* lists = &buf.binned[static_cast<std::size_t>(t) * bands];
+    for (int b = 0; b < bands; ++b) lists[b].clear();
     std::vector<float>& mine = radii[t];
     float last_r = -1;
     for (std::size_t i = first; i < last; ++i) {
@@ -336,31 +335,9 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
       const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
       const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
       const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
-      // An empty span (first band after the last) for a disc above or below the picture.
-      const auto b0 = static_cast<std::uint16_t>(y0 > y1 ? 1 : y0 / kBand);
-      const auto b1 = static_cast<std::uint16_t>(y0 > y1 ? 0 : y1 / kBand);
-      buf.span[i] = {b0, b1};
-      for (int b = b0; b <= b1; ++b) ++count[b];
+      if (y0 > y1) continue;  // above or below the picture
+      for (int b = y0 / kBand; b <= y1 / kBand; ++b) lists[b].push_back(d);
     }
-  });
-  // Band b's list starts at start[b]; thread t's piece of it after those of threads before t.
-  buf.start.assign(bands + 1, 0);
-  buf.fill.resize(static_cast<std::size_t>(threads) * bands);
-  std::uint32_t at = 0;
-  for (int b = 0; b < bands; ++b) {
-    buf.start[b] = at;
-    for (int t = 0; t < threads; ++t) {
-      buf.fill[static_cast<std::size_t>(t) * bands + b] = at;
-      at += buf.count[static_cast<std::size_t>(t) * bands + b];
-    }
-  }
-  buf.start[bands] = at;
-  buf.binned.resize(at);  // kept from frame to frame: no page faults for a new buffer
-  run_on_threads(threads, [&](int t) {
-    const auto [first, last] = piece(n, threads, t);
-    std::uint32_t* fill = &buf.fill[static_cast<std::size_t>(t) * bands];
-    for (std::size_t i = first; i < last; ++i)
-      for (int b = buf.span[i][0]; b <= buf.span[i][1]; ++b) buf.binned[fill[b]++] = discs[i];
   });
   std::vector<float> all;
   for (const auto& r : radii)
@@ -392,14 +369,14 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
       std::fill(px, px + static_cast<std::size_t>(row1 - row0) * img.width, bg);
       float r = -1;
       const Stamps* st = nullptr;
-      for (std::uint32_t k = buf.start[b]; k < buf.start[b + 1]; ++k) {
-        const Sprite& d = buf.binned[k];
-        if (d.r != r) r = d.r, st = stamps_of(r);
-        if (st)
-          stamp_disc(img, d, *st, ppu, row0, row1);
-        else
-          splat_disc(img, d, ppu, row0, row1);
-      }
+      for (int t = 0; t < threads; ++t)
+        for (const Sprite& d : buf.binned[static_cast<std::size_t>(t) * bands + b]) {
+          if (d.r != r) r = d.r, st = stamps_of(r);
+          if (st)
+            stamp_disc(img, d, *st, ppu, row0, row1);
+          else
+            splat_disc(img, d, ppu, row0, row1);
+        }
     }
   });
 }
