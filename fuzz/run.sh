@@ -13,7 +13,7 @@ formats=("$@")
 [ ${#formats[@]} -gt 0 ] || formats=(xyz lammps gsd)
 mkdir -p "$out"
 srcs=(io/mapped_file.cpp io/text_scan.cpp io/xyz.cpp io/lammps_dump.cpp io/gsd.cpp
-      io/snapshot_file.cpp sim/error.cpp io/atomic_file.cpp)
+      io/snapshot_file.cpp sim/error.cpp io/atomic_file.cpp io/atomic_masses.cpp io/gunzip.cpp)
 status=0
 for name in "${formats[@]}"; do
   case $name in
@@ -24,7 +24,7 @@ for name in "${formats[@]}"; do
   esac
   clang++-14 -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -DFUZZ_FORMAT="$id" -I"$root" -isystem /usr/include/eigen3 \
-    "$root/fuzz/fuzz_snapshot.cpp" "${srcs[@]/#/$root/}" -o "$out/fuzz_$name" -lpthread
+    "$root/fuzz/fuzz_snapshot.cpp" "${srcs[@]/#/$root/}" -o "$out/fuzz_$name" -lpthread -lz
   mkdir -p "$out/$name/corpus" "$out/$name/findings"
   cp "${seeds[@]}" "$out/$name/corpus/"
   (cd "$out/$name/findings" &&

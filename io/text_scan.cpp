@@ -1,7 +1,5 @@
 #include "io/text_scan.h"
 
-#include <cmath>
-
 #include "sim/error.h"
 
 namespace gs {
@@ -12,12 +10,9 @@ void throw_at_line(const std::string& path, std::size_t line, std::string_view w
   throw UserError(m);
 }
 
-double finite_at(const std::string& path, std::size_t line, std::string_view tok,
-                 std::string_view name) {
-  double v = 0;
-  if (!parse_real(tok, v) || !std::isfinite(v))
-    throw_at_line(path, line, not_a(tok, "a finite number", name));
-  return v;
+void throw_not_finite(const std::string& path, std::size_t line, std::string_view tok,
+                      std::string_view name) {
+  throw_at_line(path, line, not_a(tok, "a finite number", name));
 }
 
 // Appending instead of chaining operator+ avoids GCC 12's false -Wrestrict on short literals.

@@ -2,17 +2,42 @@
 // Line and token scanning shared by the text snapshot readers (extended XYZ, LAMMPS dumps):
 // no copies, no iostreams, numbers through std::from_chars, errors as "file line N: ...".
 #include <algorithm>
+#include <bit>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <string>
 #include <string_view>
 #include <thread>
 
+#include "io/decimal.h"
+
 namespace gs {
 
 inline bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+// The first space (is_space) in [p, e), or e. Eight bytes at a time: a byte below 0x21 (a space
+// or another control character) sets its high bit in (w - 0x21..) & ~w, and the lowest such bit
+// is exact (a borrow only runs upwards from a byte that already set one).
+inline const char* token_end(const char* p, const char* e) {
+  while (e - p >= 8) {
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    const std::uint64_t low = (w - 0x2121212121212121u) & ~w & 0x8080808080808080u;
+    if (low == 0) {
+      p += 8;
+      continue;
+    }
+    p += std::countr_zero(low) / 8;
+    if (is_space(*p)) return p;
+    ++p;  // a control character inside the token
+  }
+  while (p < e && !is_space(*p)) ++p;
+  return p;
 }
 
 inline bool iequals(std::string_view a, std::string_view b) {
@@ -43,8 +68,7 @@ inline bool is_blank(std::string_view s) {
 // Whole-token numbers; a leading '+' is accepted (from_chars alone refuses it).
 inline bool parse_real(std::string_view t, double& v) {
   if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  return ec == std::errc() && p == t.data() + t.size() && !t.empty();
+  return parse_decimal(t.data(), t.data() + t.size(), v);
 }
 template <class Int>
 bool parse_integer(std::string_view t, Int& v) {
@@ -110,8 +134,7 @@ void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std
       for (; t < columns; ++t) {
         while (q < eol && is_space(*q)) ++q;
         if (q == eol) break;
-        const char* te = q;
-        while (te < eol && !is_space(*te)) ++te;
+        const char* const te = token_end(q, eol);
         token(i, t, std::string_view(q, te - q), line);
         q = te;
       }
@@ -152,9 +175,15 @@ void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std
   if (first) std::rethrow_exception(first);
   if (second) std::rethrow_exception(second);
 }
+[[noreturn]] void throw_not_finite(const std::string& path, std::size_t line, std::string_view tok,
+                                   std::string_view name);
 // The finite number `tok` is, or an error at that line naming the column.
-double finite_at(const std::string& path, std::size_t line, std::string_view tok,
-                 std::string_view name);
+inline double finite_at(const std::string& path, std::size_t line, std::string_view tok,
+                        std::string_view name) {
+  double v = 0;
+  if (!parse_real(tok, v) || !std::isfinite(v)) throw_not_finite(path, line, tok, name);
+  return v;
+}
 // "'tok' is not <kind> (<name>)"
 std::string not_a(std::string_view tok, std::string_view kind, std::string_view name);
 

@@ -428,10 +428,16 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   for (auto& c : s.columns) c.values.resize(n);
   const int check_from = stated > 0 && stated < 3 ? stated : 3;
 
+  // The arrays as plain pointers: the byte stores of `active` may alias anything, and would
+  // otherwise make every token reload the vectors' and the layout's data pointers.
+  const Slot* const slots = l.slots.data();
+  Eigen::Vector3d* const position = s.position.data();
+  Eigen::Vector3d* const velocity = s.velocity.data();
   scan_rows(
       b.substr(f.body, f.end - f.body), n, ntok, f.count_line + 2, file_.path(),
-      [&](std::size_t i, std::size_t t, std::string_view tok, std::size_t line_no) {
-        const Slot& sl = l.slots[t];
+      [&, slots, position, velocity](std::size_t i, std::size_t t, std::string_view tok,
+                                     std::size_t line_no) {
+        const Slot& sl = slots[t];
         switch (sl.kind) {
           case Slot::Skip:
             break;
@@ -439,13 +445,13 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
             if (!species.empty()) species[i] = tok;  // a view into the mapped file
             break;
           case Slot::Pos:
-            s.position[i][sl.index] = real(tok, line_no, "pos");
+            position[i][sl.index] = real(tok, line_no, "pos");
             break;
           case Slot::Vel:
-            s.velocity[i][sl.index] = real(tok, line_no, "velo");
+            velocity[i][sl.index] = real(tok, line_no, "velo");
             break;
           case Slot::Momentum:
-            s.velocity[i][sl.index] = real(tok, line_no, "momenta");
+            velocity[i][sl.index] = real(tok, line_no, "momenta");
             break;
           case Slot::Mass: {
             const double m = real(tok, line_no, "masses");

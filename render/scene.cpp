@@ -178,11 +178,17 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   for (const Snapshot* s : snaps)
     if (!boxed && s->info.has_box()) boxed = &s->info;
   const bool wrap = view.framing == Framing::Box && boxed;
+  // Below `inside` (a hair under the edge) x / edge rounds below 1, its floor is 0 and the
+  // wrap leaves origin + x: the division, the slowest step of a frame's scene, is skipped for
+  // the particles already in the box, with the same bits.
+  Eigen::Vector3d inside = Eigen::Vector3d::Constant(-1);
+  if (boxed && boxed->box.allFinite()) inside = boxed->box * (1 - 0x1p-50);
   auto wrapped = [&](Eigen::Vector3d p) {
     if (wrap)
       for (int k = 0; k < dim; ++k) {
         const double x = p[k] - boxed->origin[k], edge = boxed->box[k];
-        p[k] = boxed->origin[k] + x - edge * std::floor(x / edge);
+        p[k] = x >= 0 && x <= inside[k] ? boxed->origin[k] + x
+                                        : boxed->origin[k] + x - edge * std::floor(x / edge);
       }
     return p;
   };
@@ -248,8 +254,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     }
   }
 
-  // Sprites: inactive ones (if shown; of the last snapshot only, in an overlay) first, so
-  // the 2D discs of active ones lie on top.
+  // Where a pass puts sprites (and the inset's copy of the active particles).
   struct Out {
     std::vector<Sprite>& sprites;
     std::vector<float>& shade;
@@ -292,15 +297,19 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     band_x.reserve(n);
     band_v.reserve(n);
   }
-  // A pass over particles [0, n) on the frame's threads: each takes a consecutive piece, the
-  // first appending to the scene, the others to vectors of their own appended after it in
-  // order, so the scene is the same whatever the threads.
+  // A pass over particles [0, n) on the frame's threads: each takes a consecutive piece and
+  // sorts its sprites into those drawn under the others (inactive ones) and the rest. The first
+  // thread appends the former to the scene, all keep the latter in vectors of their own, and the
+  // scene gets, in piece order, the other threads' under sprites and then everyone's others: the
+  // scene is the same whatever the threads, and one pass over a snapshot makes both layers.
   auto in_order = [&](std::size_t n, auto&& visit) {
     constexpr std::size_t kParticlesPerThread = 50000;
     const int threads = frame_threads(n, kParticlesPerThread);
     auto& pieces = keep.pieces;
-    if (pieces.size() < static_cast<std::size_t>(threads - 1)) pieces.resize(threads - 1);
+    if (pieces.size() < static_cast<std::size_t>(threads)) pieces.resize(threads);
     for (auto& p : pieces) {
+      p.under_sprites.clear();
+      p.under_shade.clear();
       p.sprites.clear();
       p.shade.clear();
       p.band_x.clear();
@@ -308,56 +317,71 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     }
     run_on_threads(threads, [&](int t) {
       const auto [first, last] = piece(n, threads, t);
-      if (t == 0) {
-        Out out{sc.sprites, sc.shade, band_x, band_v};
-        for (std::size_t i = first; i < last; ++i) visit(out, i);
-        return;
-      }
-      SceneScratch::Piece& mine = pieces[t - 1];
-      mine.sprites.reserve(last - first);
-      mine.shade.reserve(last - first);
-      Out out{mine.sprites, mine.shade, mine.band_x, mine.band_v};
-      for (std::size_t i = first; i < last; ++i) visit(out, i);
+      SceneScratch::Piece& mine = pieces[t];
+      if (t > 0) mine.under_sprites.reserve(last - first);
+      Out under{t == 0 ? sc.sprites : mine.under_sprites, t == 0 ? sc.shade : mine.under_shade,
+                mine.band_x, mine.band_v};
+      Out over{mine.sprites, mine.shade, mine.band_x, mine.band_v};
+      for (std::size_t i = first; i < last; ++i) visit(under, over, i);
     });
+    auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
     for (int t = 1; t < threads; ++t) {
-      const SceneScratch::Piece& p = pieces[t - 1];
-      sc.sprites.insert(sc.sprites.end(), p.sprites.begin(), p.sprites.end());
-      sc.shade.insert(sc.shade.end(), p.shade.begin(), p.shade.end());
-      band_x.insert(band_x.end(), p.band_x.begin(), p.band_x.end());
-      band_v.insert(band_v.end(), p.band_v.begin(), p.band_v.end());
+      append(sc.sprites, pieces[t].under_sprites);
+      append(sc.shade, pieces[t].under_shade);
+    }
+    for (int t = 0; t < threads; ++t) {
+      append(sc.sprites, pieces[t].sprites);
+      append(sc.shade, pieces[t].shade);
+      append(band_x, pieces[t].band_x);
+      append(band_v, pieces[t].band_v);
     }
   };
-  if (style.show_inactive) {
-    const Snapshot& s = *snaps.back();
-    in_order(s.size(), [&](Out& out, std::size_t i) {
-      if (!s.active[i]) push(out, wrapped(s.position[i]), s.radius[i], pal.inactive, none);
+  auto inactive = [&](const Snapshot& s, Out& out, std::size_t i) {
+    push(out, wrapped(s.position[i]), s.radius[i], pal.inactive, none);
+  };
+  // Before the first collision nothing is active (DESIGN: active = has collided), but the
+  // kicked particle moves: it is drawn, so that no frame of a kick is empty.
+  auto moving_instead = [](const Snapshot& s) { return !any_active(s) && s.has_velocity(); };
+  auto active = [&](const Snapshot& s, bool moving, Rgb8 time_colour, Out& out, std::size_t i) {
+    if (!s.active[i] && !(moving && s.velocity[i].squaredNorm() > 0)) return;
+    if (profile && s.active[i]) {
+      out.band_x.push_back(s.position[i]);
+      // As field_values computes a (scaled) speed, so the inset is the same either way.
+      if (speed_values)
+        out.band_v.push_back(values[i]);
+      else
+        out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms
+                                          : s.velocity[i].norm());
+    }
+    if (overlay || std::isnan(values[i])) {
+      push(out, wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);
+      return;
+    }
+    const double t = normalise(values[i], sc.range, style.scale);
+    push(out, wrapped(s.position[i]), s.radius[i], cmap.at8(t), static_cast<float>(t));
+  };
+  // Inactive particles (if shown; of the last snapshot only, in an overlay) lie under the rest.
+  if (style.show_inactive && !overlay) {
+    const Snapshot& s = *snaps.front();
+    const bool moving = moving_instead(s);
+    in_order(s.size(), [&](Out& under, Out& over, std::size_t i) {
+      if (!s.active[i]) inactive(s, under, i);
+      active(s, moving, Rgb8{}, over, i);
     });
-  }
-  for (std::size_t k = 0; k < snaps.size(); ++k) {
-    const Snapshot& s = *snaps[k];
-    const Rgb8 time_colour = overlay_colour(k);
-    // Before the first collision nothing is active (DESIGN: active = has collided), but the
-    // kicked particle moves: it is drawn, so that no frame of a kick is empty.
-    const bool moving_instead = !any_active(s) && s.has_velocity();
-    in_order(s.size(), [&](Out& out, std::size_t i) {
-      if (!s.active[i] && !(moving_instead && s.velocity[i].squaredNorm() > 0)) return;
-      if (profile && s.active[i]) {
-        out.band_x.push_back(s.position[i]);
-        // As field_values computes a (scaled) speed, so the inset is the same either way.
-        if (speed_values)
-          out.band_v.push_back(values[i]);
-        else
-          out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms
-                                            : s.velocity[i].norm());
-      }
-      if (overlay || std::isnan(values[i])) {
-        push(out, wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive,
-             none);
-        return;
-      }
-      const double t = normalise(values[i], sc.range, style.scale);
-      push(out, wrapped(s.position[i]), s.radius[i], cmap.at8(t), static_cast<float>(t));
-    });
+  } else {
+    if (style.show_inactive) {
+      const Snapshot& s = *snaps.back();
+      in_order(s.size(), [&](Out& under, Out&, std::size_t i) {
+        if (!s.active[i]) inactive(s, under, i);
+      });
+    }
+    for (std::size_t k = 0; k < snaps.size(); ++k) {
+      const Snapshot& s = *snaps[k];
+      const bool moving = moving_instead(s);
+      in_order(s.size(), [&](Out&, Out& over, std::size_t i) {
+        active(s, moving, overlay_colour(k), over, i);
+      });
+    }
   }
   if (profile) sc.inset = inset_profile(dim, band_x, band_v, scaled_inset);
   if (three_d && style.occlusion_cull) cull_occluded(sc);
