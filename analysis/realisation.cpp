@@ -199,6 +199,12 @@ EnsembleSpec parse_spec(std::string_view text, const std::string& source) {
     throw UserError(source + ": unknown kick-site '" + site + "'");
   p.temperature = num("temperature");
   p.lattice = num("lattice");
+  // Written only for the unbounded medium (to_toml): older files have none.
+  if (const toml::node* m = t.get("medium")) {
+    const auto word = m->value<std::string>();
+    if (!word) throw UserError(source + ": key 'medium' is not a string");
+    p.medium = parse_medium(*word);
+  }
   s.realisations = static_cast<std::uint64_t>(integer("realisations"));
   s.per_decade = static_cast<int>(integer("per-decade"));
   s.bins = static_cast<int>(integer("bins"));

@@ -38,7 +38,8 @@ constexpr std::string_view kSimulationFlags[] = {
     "--dim",       "--particles", "--density",       "--restitution",
     "--cutoff",    "--speed",     "--seed",          "--realisation",
     "--t-max",     "--initial",   "--temperature",   "--lattice",
-    "--kick-site", "--frames",    "--frame-spacing", "--t-start"};
+    "--kick-site", "--frames",    "--frame-spacing", "--t-start",
+    "--medium"};
 
 // Writes DIR/movie.toml and returns its text.
 std::string write_movie_toml(const std::filesystem::path& dir, const CLI::App& sub, bool stored) {
