@@ -1,4 +1,5 @@
-// Bytes per particle of the engine (issue 31 part 2): at rest, and the extra of a moving one.
+// Bytes per particle of the engine (issue 31 part 2): at rest, and the extra of a moving one; and
+// the unbounded medium against the box (issue 31 part 1): cost per collision and peak memory.
 // Each measurement runs in a child process of its own, because a process's peak resident set
 // only grows: the parent reads the child's peak from wait4, the child sends what it holds after
 // construction and after the run (VmRSS) through a pipe.
@@ -32,10 +33,22 @@ struct Footprint {
   double constructed = 0;  // bytes held once the engine is made
   double after_run = 0;    // bytes held at t_max
   double active = 0;       // particles that have moved by t_max
+  double made = 0;         // particles the engine holds at t_max
+  double collisions = 0;
+  double run_cpu = 0;  // CPU-seconds of run_until
 };
 
-// The r = 0.8 kick of `n` particles run to `t_max`, measured in a child.
-Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
+PhysicsConfig kick_at(int dim, std::int64_t n, double t_max) {
+  PhysicsConfig c;
+  c.dim = dim;
+  c.particles = n;
+  c.restitution = 0.8;
+  c.t_max = t_max;
+  return c;
+}
+
+// The kick of `c` run to its t_max, measured in a child.
+Footprint kick_footprint(const PhysicsConfig& c) {
   int fd[2];
   GS_CHECK(pipe(fd) == 0);
   const pid_t pid = fork();
@@ -45,18 +58,17 @@ Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
     // Every large block mapped and unmapped on its own, whatever N: glibc's default threshold
     // adapts to earlier frees, so N and 2N would put the same arrays on the heap or not.
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
-    PhysicsConfig c;
-    c.dim = dim;
-    c.particles = n;
-    c.restitution = 0.8;
-    c.t_max = t_max;
     validate(c);
     auto sim = make_simulation(c);
     Footprint f;
     f.constructed = resident_bytes();
-    sim->run_until(t_max);
+    const double cpu0 = cpu_seconds();
+    sim->run_until(c.t_max);
+    f.run_cpu = cpu_seconds() - cpu0;
     f.after_run = resident_bytes();
     f.active = static_cast<double>(sim->sample().active);
+    f.made = static_cast<double>(sim->snapshot().size());
+    f.collisions = static_cast<double>(sim->stats().collisions);
     const bool sent = write(fd[1], &f, sizeof f) == static_cast<ssize_t>(sizeof f);
     _exit(sent ? 0 : 1);
   }
@@ -78,8 +90,8 @@ Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
 // from its construction to t_max per particle that started moving in between (the engine holds
 // every particle's whole state from the start, so a particle costs little more when it moves).
 std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
-  const Footprint one = kick_footprint(dim, n, t_max);
-  const Footprint two = kick_footprint(dim, 2 * n, t_max);
+  const Footprint one = kick_footprint(kick_at(dim, n, t_max));
+  const Footprint two = kick_footprint(kick_at(dim, 2 * n, t_max));
   const auto per_rest = [&](double Footprint::*m) {
     return (two.*m - one.*m) / static_cast<double>(n);
   };
@@ -92,6 +104,29 @@ std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
           {"moving_particles", two.active, "", ""}};
 }
 
+// The same r = 0.8 kick (same seed statistics, not the same gas) in a box of n particles and in
+// the unbounded medium, to a time at which the box's front is still far from its edge, so that
+// both have about the same N_t: CPU time per collision and peak resident memory of each. The
+// medium may make up to n particles, as many as the box holds.
+std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max) {
+  PhysicsConfig c = kick_at(dim, n, t_max);
+  c.kick_site = KickSite::Centre;
+  const Footprint box = kick_footprint(c);
+  c.medium = Medium::Unbounded;
+  const Footprint open = kick_footprint(c);
+  const auto per_collision = [](const Footprint& f) { return 1e6 * f.run_cpu / f.collisions; };
+  return {{"box_active", box.active, "", ""},
+          {"unbounded_active", open.active, "", ""},
+          {"box_cpu_microseconds_per_collision", per_collision(box), "us", ""},
+          {"unbounded_cpu_microseconds_per_collision", per_collision(open), "us", ""},
+          {"unbounded_over_box_cost_per_collision", per_collision(open) / per_collision(box), "",
+           ""},
+          {"box_peak_megabytes", box.peak / 1e6, "MB", ""},
+          {"unbounded_peak_megabytes", open.peak / 1e6, "MB", ""},
+          {"unbounded_particles_made", open.made, "", ""},
+          {"unbounded_bytes_per_made_particle", open.after_run / open.made, "B", ""}};
+}
+
 }  // namespace
 
 void add_memory_cases(std::vector<Case>& cases) {
@@ -101,6 +136,12 @@ void add_memory_cases(std::vector<Case>& cases) {
   cases.push_back({"sim/bytes_per_particle_3d",
                    "resident bytes per particle, 3D r = 0.8 kick to t = 3e4, N = 1e6 and 2e6",
                    false, [] { return bytes_per_particle(3, 1000000, 30000); }});
+  cases.push_back({"sim/unbounded_vs_box_2d",
+                   "2D r = 0.8 kick to t = 3e4: box of 1e6 discs against the unbounded medium",
+                   false, [] { return unbounded_against_box(2, 1000000, 30000); }});
+  cases.push_back({"sim/unbounded_vs_box_3d",
+                   "3D r = 0.8 kick to t = 3e4: box of 1e6 spheres against the unbounded medium",
+                   false, [] { return unbounded_against_box(3, 1000000, 30000); }});
 }
 
 }  // namespace gs::bench
