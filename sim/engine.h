@@ -161,7 +161,7 @@ class Engine final : public Simulation {
   void cell_insert(std::int32_t i, std::int32_t cell);
   void cell_remove(std::int32_t i, std::int32_t cell);
   void reserve_particles(std::size_t n);
-  void make_cell(std::int32_t cell);  // the unbounded medium: appends the cell's particles
+  [[gnu::cold]] void make_cell(std::int32_t cell);  // the unbounded medium: appends its particles
   void kick_nearest_centre();
 
   PhysicsConfig config_;

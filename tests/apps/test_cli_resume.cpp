@@ -58,6 +58,9 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
       // One GSD file per snapshot time, whose bytes depend only on the state written.
       "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times 100,10000 "
       "--snapshot-format gsd --snapshot-particles active",
+      // The unbounded medium: its checkpoints hold the cells made so far.
+      "--dim 2 --medium unbounded --particles 40000 --t-max 60000 --restitution 0.5 "
+      "--snapshot-times 100,10000",
   };
   int n = 0;
   for (const std::string& c : cases) {
@@ -185,6 +188,7 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
   const std::string runs[] = {
       "--dim 2 --particles 600 --density 0.3 --restitution 0.7 --cutoff 0.001 --speed 2 "
       "--seed 5 --realisation 3 --t-max 60 --initial kick --kick-site centre --temperature 2 "
+      "--medium box "
       "--per-decade 7 --sample-every 5 --snapshot-times 10,20 --png --compare-elastic "
       "--width 64 --height 48",
       "--dim 1 --particles 300 --lattice 2 --restitution 0 --t-max 400 --sample-every 50",
