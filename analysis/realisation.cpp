@@ -3,7 +3,6 @@
 #include <toml++/toml.h>
 #include <unistd.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -253,12 +252,16 @@ namespace {
 // adds no neighbours; the densest-cell grid's side is box / floor(box / 10), about 10 as in a box.
 Snapshot compact_box(const Snapshot& s, double margin) {
   Snapshot out = s;
-  Eigen::AlignedBox3d made;
-  for (const auto& x : s.position) made.extend(x);
   const int d = s.info.dim;
-  const double side = made.sizes().head(d).maxCoeff() + 2 * margin;
-  for (auto& x : out.position) x.head(d) += Eigen::VectorXd::Constant(d, margin) - made.min().head(d);
-  out.info.set_cubic_box(side);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, extent = 0;
+  for (const auto& x : s.position)
+    for (int k = 0; k < d; ++k) lo[k] = std::min(lo[k], x[k]);
+  for (auto& x : out.position)
+    for (int k = 0; k < d; ++k) {
+      x[k] += margin - lo[k];
+      extent = std::max(extent, x[k] + margin);
+    }
+  out.info.set_cubic_box(extent);
   out.info.origin.setZero();
   return out;
 }
