@@ -16,7 +16,9 @@
 namespace gs {
 
 double PhysicsConfig::box() const {
-  if (unbounded()) return unbounded_box(dim);
+  // Exact: an integer under 2^15 times a 21-bit fraction. CellGrid then finds this many cells of
+  // exactly kUnboundedCellSide.
+  if (unbounded()) return unbounded_cells_per_side(*this) * kUnboundedCellSide;
   const double n = lattice > 0 ? 1.0 / lattice : density;
   return std::pow(static_cast<double>(particles) / n, 1.0 / dim);
 }
@@ -26,15 +28,11 @@ double PhysicsConfig::paper_time(double t) const {
   return t * speed * std::pow(n, 1.0 / dim);
 }
 
-int unbounded_cells_per_side(int dim) {
-  // 2D: 32766^2 cells (even, under 2^15); 3D: 1290^3 < 2^31. In 1D there is no such medium.
-  return dim == 2 ? 32766 : dim == 3 ? 1290 : 0;
-}
-
-double unbounded_box(int dim) {
-  // Exact: a 15-bit integer times a 21-bit fraction. CellGrid then finds this many cells of
-  // exactly kUnboundedCellSide.
-  return unbounded_cells_per_side(dim) * kUnboundedCellSide;
+int unbounded_cells_per_side(const PhysicsConfig& c) {
+  // 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1290^3 < 2^31 (1D: validate refuses).
+  const double most = c.dim == 3 ? 1290 : 32766;
+  const double side = std::pow(static_cast<double>(c.particles) / c.density, 1.0 / c.dim);
+  return 2 * static_cast<int>(std::clamp(std::ceil(2 * side / kUnboundedCellSide), 8.0, most / 2));
 }
 
 double max_rsa_density(int dim) {

@@ -133,7 +133,8 @@ void Engine<D>::make_cell(std::int32_t cell) {
       throw UserError("--t-max " + format_double(config_.t_max) +
                       ": the front reached the edge of the unbounded medium's addressable "
                       "region (radius " + format_double((middle - 1) * grid_.side()) +
-                      " diameters) at t = " + format_double(now_) + "; use a smaller --t-max");
+                      " diameters, set by --particles) at t = " + format_double(now_) +
+                      "; use a smaller --t-max or a larger --particles");
   }
   fresh_.clear();
   medium_->particles(key, fresh_);
@@ -358,17 +359,15 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 // walking them does not wait on the particles, and the particles' lines arrive while the lists
 // of the other cells (or of the other sphere of a collision) are still being walked.
 template <int D>
-template <class ForEachCell>
+template <bool kMakes, class ForEachCell>
 void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
-  // A cell that comes into a moving particle's reach is made first (only in the unbounded
-  // medium: a box's cells all exist, and the test costs it one branch per search).
-  if (medium_)
-    for_each_cell([&](std::int32_t cell) {
-      if (head_[cell] == kUnmadeCell) make_cell(cell);
-    });
   std::int32_t first[27];
   int cells = 0;
   for_each_cell([&](std::int32_t cell) {
+    // A cell that comes into a moving particle's reach is made first.
+    if constexpr (kMakes)
+      if (head_[cell] == kUnmadeCell) [[unlikely]]
+        make_cell(cell);
     const std::int32_t h = head_[cell] - kHeadOffset;
     first[cells] = h;
     cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
@@ -386,7 +385,7 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
 
 template <int D>
 void Engine<D>::gather_stencil(std::int32_t i, Neighbours& nb) {
-  gather(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
+  gather_cells(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
 }
 
 // Looks for a collision of i (at xi now) with the gathered particles earlier than its current
@@ -645,7 +644,8 @@ void Engine<D>::cross_cell(std::int32_t i) {
   const Vec<D> xi = kin_[i].x;
   predict_crossing(i, xi);
   queue_.prefetch_bucket(std::min(pred_[i].coll_time, pred_[i].cross_time));
-  gather(i, near_[0], [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
+  gather_cells(i, near_[0],
+               [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
   search(i, xi, near_[0]);
   schedule(i);
 }

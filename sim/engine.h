@@ -143,8 +143,17 @@ class Engine final : public Simulation {
     int count = 0;
     std::int32_t who[kMax];
   };
-  template <class ForEachCell>
+  // kMakes: the unbounded medium, whose cells are made as they come into reach (a box's all
+  // exist; the two are apart so that a box pays nothing for the test).
+  template <bool kMakes, class ForEachCell>
   void gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell);
+  template <class ForEachCell>
+  void gather_cells(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
+    if (medium_)
+      gather<true>(i, nb, for_each_cell);
+    else
+      gather<false>(i, nb, for_each_cell);
+  }
   void gather_stencil(std::int32_t i, Neighbours& nb);
   void search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb);
   void predict(std::int32_t i);

@@ -96,7 +96,7 @@ void expect_generators_particles(const PhysicsConfig& c, std::uint64_t reference
   auto sim = make_simulation(c);
   sim->run_until(1000);
   const Snapshot s = sim->snapshot();
-  const int middle = unbounded_cells_per_side(D) / 2;
+  const int middle = unbounded_cells_per_side(c) / 2;
   const double side = kUnboundedCellSide, shift = middle * side;
   UnboundedMedium<D> medium(MediumOptions{D, c.density, side, reference_seed, c.realisation});
   std::map<typename UnboundedMedium<D>::Cell, VecArray<D>> drawn;
