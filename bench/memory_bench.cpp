@@ -111,8 +111,7 @@ std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
 // making included, the box's random sequential addition not) and peak resident memory. One
 // realisation's cost per collision varies by 10-20% with its history (sim/kick3d_scaling), so
 // the costs are summed over `realisations` of each. The medium may make up to n particles.
-std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max,
-                                          int realisations) {
+std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max, int realisations) {
   struct Sum {
     double active = 0, cpu = 0, collisions = 0, events = 0, peak = 0, made = 0;
   } box, open;
@@ -155,12 +154,14 @@ void add_memory_cases(std::vector<Case>& cases) {
                    "resident bytes per particle, 3D r = 0.8 kick to t = 3e4, N = 1e6 and 2e6",
                    false, [] { return bytes_per_particle(3, 1000000, 30000); }});
   // Box side 2000: at t = 3e4 the outermost active disc is about 200 from the kick.
-  cases.push_back({"sim/unbounded_vs_box_2d",
-                   "2D r = 0.8 kick to t = 3e4, 4 realisations: box of 1e6 discs against the unbounded medium",
-                   false, [] { return unbounded_against_box(2, 1000000, 30000, 4); }});
+  cases.push_back(
+      {"sim/unbounded_vs_box_2d",
+       "2D r = 0.8 kick to t = 3e4, 4 realisations: box of 1e6 discs against the unbounded medium",
+       false, [] { return unbounded_against_box(2, 1000000, 30000, 4); }});
   // Box side 200: at t = 1e4 the outermost active sphere is about 45 from the kick.
   cases.push_back({"sim/unbounded_vs_box_3d",
-                   "3D r = 0.8 kick to t = 1e4, 4 realisations: box of 2e6 spheres against the unbounded medium",
+                   "3D r = 0.8 kick to t = 1e4, 4 realisations: box of 2e6 spheres against the "
+                   "unbounded medium",
                    false, [] { return unbounded_against_box(3, 2000000, 10000, 4); }});
 }
 

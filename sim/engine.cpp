@@ -2,14 +2,14 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 #include "sim/collision.h"
 #include "sim/error.h"
-#include "sim/huge_pages.h"
 #include "sim/format.h"
+#include "sim/huge_pages.h"
 #include "sim/observables.h"
 #include "sim/rng.h"
 
@@ -132,7 +132,8 @@ void Engine<D>::make_cell(std::int32_t cell) {
     if (c[k] == 0 || c[k] == side - 1)
       throw UserError("--t-max " + format_double(config_.t_max) +
                       ": the front reached the edge of the unbounded medium's addressable "
-                      "region (radius " + format_double((middle - 1) * grid_.side()) +
+                      "region (radius " +
+                      format_double((middle - 1) * grid_.side()) +
                       " diameters, set by --particles) at t = " + format_double(now_) +
                       "; use a smaller --t-max or a larger --particles");
   }
@@ -244,8 +245,7 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
     in.expect(heads.size() == made_.size());
     for (std::size_t k = 0; k < made_.size(); ++k) {
       in.expect(made_[k] >= 0 && static_cast<std::size_t>(made_[k]) < head_.size() &&
-                heads[k] >= kEmptyCell &&
-                heads[k] < static_cast<std::int64_t>(n) + kHeadOffset);
+                heads[k] >= kEmptyCell && heads[k] < static_cast<std::int64_t>(n) + kHeadOffset);
       head_[made_[k]] = heads[k];
     }
   } else {
@@ -706,8 +706,8 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
   // the time as a step does (GSD's configuration/step, OVITO's Timestep).
   s.info.step = stats_.collisions;
   // The unbounded medium's box is the addressable region, almost all of it never made.
-  s.info.density = medium_ ? config_.density
-                           : static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
+  s.info.density =
+      medium_ ? config_.density : static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;

@@ -60,8 +60,9 @@ TEST(CliRun, WritesTheRunFolder) {
 // the pictures frame the active ones, and a run that needs more particles stops naming the flag.
 TEST(CliRun, UnboundedMediumRun) {
   const auto dir = scratch_dir("unbounded");
-  const std::string args = "run --medium unbounded --particles 20000 --t-max 300 "
-                           "--restitution 0.5 --quiet --png --width 320 --height 320 --out ";
+  const std::string args =
+      "run --medium unbounded --particles 20000 --t-max 300 "
+      "--restitution 0.5 --quiet --png --width 320 --height 320 --out ";
   auto r = grainshock(args + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Snapshot s = read_snapshot((dir / "snapshots/tsim_300.xyz").string());

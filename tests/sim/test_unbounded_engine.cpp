@@ -105,7 +105,8 @@ void expect_generators_particles(const PhysicsConfig& c, std::uint64_t reference
     if (s.velocity[i].norm() > 0 || s.active[i]) continue;
     Vec<D> x = s.position[i].template head<D>();
     typename UnboundedMedium<D>::Cell cell;
-    for (int k = 0; k < D; ++k) cell[k] = static_cast<std::int64_t>(std::floor((x[k] - shift) / side));
+    for (int k = 0; k < D; ++k)
+      cell[k] = static_cast<std::int64_t>(std::floor((x[k] - shift) / side));
     auto [it, fresh] = drawn.try_emplace(cell);
     if (fresh) medium.particles(cell, it->second);
     const bool found = std::any_of(it->second.begin(), it->second.end(), [&](const Vec<D>& y) {
@@ -157,7 +158,8 @@ Ensemble ensemble(PhysicsConfig c, int runs, double t) {
     std::vector<Eigen::Vector3d> active;
     sim->active_positions(active);
     for (const auto& x : active)
-      e.reach = std::max(e.reach, (x - Eigen::Vector3d::Constant(0.5 * c.box())).head(c.dim).norm());
+      e.reach =
+          std::max(e.reach, (x - Eigen::Vector3d::Constant(0.5 * c.box())).head(c.dim).norm());
     const double x[3] = {static_cast<double>(s.active), s.energy, s.radius_rms};
     for (int m = 0; m < 3; ++m) sum[m] += x[m], sum2[m] += x[m] * x[m];
   }
@@ -173,8 +175,7 @@ Ensemble ensemble(PhysicsConfig c, int runs, double t) {
 double worst_z(const Ensemble& a, const Ensemble& b) {
   double z = 0;
   for (int m = 0; m < 3; ++m)
-    z = std::max(z, std::abs(a.mean[m] - b.mean[m]) /
-                        std::hypot(a.error[m], b.error[m]));
+    z = std::max(z, std::abs(a.mean[m] - b.mean[m]) / std::hypot(a.error[m], b.error[m]));
   return z;
 }
 
