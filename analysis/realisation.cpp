@@ -199,6 +199,12 @@ EnsembleSpec parse_spec(std::string_view text, const std::string& source) {
     throw UserError(source + ": unknown kick-site '" + site + "'");
   p.temperature = num("temperature");
   p.lattice = num("lattice");
+  // Written only for the unbounded medium (to_toml): older files have none.
+  if (const toml::node* m = t.get("medium")) {
+    const auto word = m->value<std::string>();
+    if (!word) throw UserError(source + ": key 'medium' is not a string");
+    p.medium = parse_medium(*word);
+  }
   s.realisations = static_cast<std::uint64_t>(integer("realisations"));
   s.per_decade = static_cast<int>(integer("per-decade"));
   s.bins = static_cast<int>(integer("bins"));
@@ -237,6 +243,31 @@ std::vector<double> sample_times(const EnsembleSpec& spec) {
   return merge_times(log_times(0.1, spec.physics.t_max, spec.per_decade), spec.snapshot_times);
 }
 
+namespace {
+
+// The unbounded medium's snapshot moved into a periodic box just larger than what has been made,
+// for the band measures, whose cell grids span the whole box: its own box is the engine's
+// addressable region (32766^2 cells in 2D), almost all of it never made. Particles on opposite
+// faces stay `margin` apart across the wrap, more than any cell those measures use, so the wrap
+// adds no neighbours; the densest-cell grid's side is box / floor(box / 10), about 10 as in a box.
+Snapshot compact_box(const Snapshot& s, double margin) {
+  Snapshot out = s;
+  const int d = s.info.dim;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, extent = 0;
+  for (const auto& x : s.position)
+    for (int k = 0; k < d; ++k) lo[k] = std::min(lo[k], x[k]);
+  for (auto& x : out.position)
+    for (int k = 0; k < d; ++k) {
+      x[k] += margin - lo[k];
+      extent = std::max(extent, x[k] + margin);
+    }
+  out.info.set_cubic_box(extent);
+  out.info.origin.setZero();
+  return out;
+}
+
+}  // namespace
+
 SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   SnapshotMeasures m;
   m.t = s.info.time;
@@ -251,7 +282,9 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   // The packing readings answer the paper's 2D numbers; in 3D (2e6 spheres, 64 shifted grids)
   // they would cost seconds per snapshot for nothing the paper states, so only the front is
   // measured there.
-  if (spec.physics.dim == 2)
+  if (spec.physics.dim == 2 && spec.physics.unbounded())
+    m.measures = measure_band(compact_box(s, 2 * BandMeasureOptions{}.cell), spec.physics.density);
+  else if (spec.physics.dim == 2)
     m.measures = measure_band(s, spec.physics.density);
   else
     m.measures.front = measure_front(s, spec.physics.density);

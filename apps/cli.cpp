@@ -243,6 +243,18 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
          },
          "Which particle is kicked: random or the one nearest the centre")
       ->option_text("random|centre (random)");
+  sub.add_option_function<std::string>(
+         "--medium",
+         [&c](const std::string& v) {
+           try {
+             c.medium = parse_medium(v);
+           } catch (const UserError& e) {
+             throw CLI::ValidationError(e.what());
+           }
+         },
+         "box: N particles in a periodic box; unbounded (kicks in 2D, 3D): the gas at rest made "
+         "where the front arrives, N the most it may make")
+      ->option_text("box|unbounded (box)");
   sub.add_option("--temperature", c.temperature, "Temperature of the thermal initial state")
       ->capture_default_str();
   sub.add_option("--lattice", c.lattice, "1D only: lattice spacing a instead of random positions")

@@ -35,10 +35,10 @@ constexpr const char* kMovieOutputs[] = {
 
 // Flags that shape a simulation: they mean nothing to stored snapshots.
 constexpr std::string_view kSimulationFlags[] = {
-    "--dim",       "--particles", "--density",       "--restitution",
-    "--cutoff",    "--speed",     "--seed",          "--realisation",
-    "--t-max",     "--initial",   "--temperature",   "--lattice",
-    "--kick-site", "--frames",    "--frame-spacing", "--t-start"};
+    "--dim",         "--particles", "--density",     "--restitution", "--cutoff",
+    "--speed",       "--seed",      "--realisation", "--t-max",       "--initial",
+    "--temperature", "--lattice",   "--kick-site",   "--frames",      "--frame-spacing",
+    "--t-start",     "--medium"};
 
 // Writes DIR/movie.toml and returns its text.
 std::string write_movie_toml(const std::filesystem::path& dir, const CLI::App& sub, bool stored) {

@@ -1,4 +1,5 @@
-// Bytes per particle of the engine (issue 31 part 2): at rest, and the extra of a moving one.
+// Bytes per particle of the engine (issue 31 part 2): at rest, and the extra of a moving one; and
+// the unbounded medium against the box (issue 31 part 1): cost per collision and peak memory.
 // Each measurement runs in a child process of its own, because a process's peak resident set
 // only grows: the parent reads the child's peak from wait4, the child sends what it holds after
 // construction and after the run (VmRSS) through a pipe.
@@ -32,10 +33,22 @@ struct Footprint {
   double constructed = 0;  // bytes held once the engine is made
   double after_run = 0;    // bytes held at t_max
   double active = 0;       // particles that have moved by t_max
+  double made = 0;         // particles the engine holds at t_max
+  double collisions = 0, events = 0;
+  double run_cpu = 0;  // CPU-seconds of run_until
 };
 
-// The r = 0.8 kick of `n` particles run to `t_max`, measured in a child.
-Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
+PhysicsConfig kick_at(int dim, std::int64_t n, double t_max) {
+  PhysicsConfig c;
+  c.dim = dim;
+  c.particles = n;
+  c.restitution = 0.8;
+  c.t_max = t_max;
+  return c;
+}
+
+// The kick of `c` run to its t_max, measured in a child.
+Footprint kick_footprint(const PhysicsConfig& c) {
   int fd[2];
   GS_CHECK(pipe(fd) == 0);
   const pid_t pid = fork();
@@ -45,18 +58,18 @@ Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
     // Every large block mapped and unmapped on its own, whatever N: glibc's default threshold
     // adapts to earlier frees, so N and 2N would put the same arrays on the heap or not.
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
-    PhysicsConfig c;
-    c.dim = dim;
-    c.particles = n;
-    c.restitution = 0.8;
-    c.t_max = t_max;
     validate(c);
     auto sim = make_simulation(c);
     Footprint f;
     f.constructed = resident_bytes();
-    sim->run_until(t_max);
+    const double cpu0 = cpu_seconds();
+    sim->run_until(c.t_max);
+    f.run_cpu = cpu_seconds() - cpu0;
     f.after_run = resident_bytes();
     f.active = static_cast<double>(sim->sample().active);
+    f.made = static_cast<double>(sim->snapshot().size());
+    f.collisions = static_cast<double>(sim->stats().collisions);
+    f.events = static_cast<double>(sim->stats().events);
     const bool sent = write(fd[1], &f, sizeof f) == static_cast<ssize_t>(sizeof f);
     _exit(sent ? 0 : 1);
   }
@@ -78,8 +91,8 @@ Footprint kick_footprint(int dim, std::int64_t n, double t_max) {
 // from its construction to t_max per particle that started moving in between (the engine holds
 // every particle's whole state from the start, so a particle costs little more when it moves).
 std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
-  const Footprint one = kick_footprint(dim, n, t_max);
-  const Footprint two = kick_footprint(dim, 2 * n, t_max);
+  const Footprint one = kick_footprint(kick_at(dim, n, t_max));
+  const Footprint two = kick_footprint(kick_at(dim, 2 * n, t_max));
   const auto per_rest = [&](double Footprint::*m) {
     return (two.*m - one.*m) / static_cast<double>(n);
   };
@@ -92,6 +105,45 @@ std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
           {"moving_particles", two.active, "", ""}};
 }
 
+// The same r = 0.8 kick (same seed statistics, not the same gas) in a box of n particles and in
+// the unbounded medium, to a time at which the box's front is still far from its edge, so that
+// both have about the same N_t: CPU time per collision and per event of run_until (the medium's
+// making included, the box's random sequential addition not) and peak resident memory. One
+// realisation's cost per collision varies by 10-20% with its history (sim/kick3d_scaling), so
+// the costs are summed over `realisations` of each. The medium may make up to n particles.
+std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max, int realisations) {
+  struct Sum {
+    double active = 0, cpu = 0, collisions = 0, events = 0, peak = 0, made = 0;
+  } box, open;
+  for (int k = 0; k < realisations; ++k) {
+    PhysicsConfig c = kick_at(dim, n, t_max);
+    c.kick_site = KickSite::Centre;
+    c.realisation = static_cast<std::uint64_t>(k);
+    for (Sum* sum : {&box, &open}) {
+      c.medium = sum == &box ? Medium::Box : Medium::Unbounded;
+      const Footprint f = kick_footprint(c);
+      sum->active += f.active / realisations;
+      sum->cpu += f.run_cpu;
+      sum->collisions += f.collisions;
+      sum->events += f.events;
+      sum->peak = std::max(sum->peak, f.peak);
+      sum->made += f.made / realisations;
+    }
+  }
+  const auto per = [](const Sum& s, double Sum::*what) { return 1e6 * s.cpu / (s.*what); };
+  return {{"box_active_mean", box.active, "", ""},
+          {"unbounded_active_mean", open.active, "", ""},
+          {"box_cpu_microseconds_per_collision", per(box, &Sum::collisions), "us", ""},
+          {"unbounded_cpu_microseconds_per_collision", per(open, &Sum::collisions), "us", ""},
+          {"unbounded_over_box_cost_per_collision",
+           per(open, &Sum::collisions) / per(box, &Sum::collisions), "", ""},
+          {"unbounded_over_box_cost_per_event", per(open, &Sum::events) / per(box, &Sum::events),
+           "", ""},
+          {"box_peak_megabytes", box.peak / 1e6, "MB", ""},
+          {"unbounded_peak_megabytes", open.peak / 1e6, "MB", ""},
+          {"unbounded_particles_made_mean", open.made, "", ""}};
+}
+
 }  // namespace
 
 void add_memory_cases(std::vector<Case>& cases) {
@@ -101,6 +153,16 @@ void add_memory_cases(std::vector<Case>& cases) {
   cases.push_back({"sim/bytes_per_particle_3d",
                    "resident bytes per particle, 3D r = 0.8 kick to t = 3e4, N = 1e6 and 2e6",
                    false, [] { return bytes_per_particle(3, 1000000, 30000); }});
+  // Box side 2000: at t = 3e4 the outermost active disc is about 200 from the kick.
+  cases.push_back(
+      {"sim/unbounded_vs_box_2d",
+       "2D r = 0.8 kick to t = 3e4, 4 realisations: box of 1e6 discs against the unbounded medium",
+       false, [] { return unbounded_against_box(2, 1000000, 30000, 4); }});
+  // Box side 200: at t = 1e4 the outermost active sphere is about 45 from the kick.
+  cases.push_back({"sim/unbounded_vs_box_3d",
+                   "3D r = 0.8 kick to t = 1e4, 4 realisations: box of 2e6 spheres against the "
+                   "unbounded medium",
+                   false, [] { return unbounded_against_box(3, 2000000, 10000, 4); }});
 }
 
 }  // namespace gs::bench

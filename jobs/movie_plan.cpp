@@ -48,6 +48,12 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
 
 MoviePlan make_live_plan(const PhysicsConfig& physics, const FrontMovieOptions& o) {
   MoviePlan p = make_plan(o);
+  // A fixed camera frames the whole periodic box; the unbounded medium's is an addressable region
+  // thousands of diameters wide that is almost all never made.
+  if (physics.unbounded() && !p.follow)
+    throw UsageError(
+        "--camera fixed: frames the whole box, and --medium unbounded has none; "
+        "use --camera follow");
   if (p.field_auto)
     p.style.field =
         physics.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;

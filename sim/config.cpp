@@ -11,10 +11,14 @@
 
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/unbounded_medium.h"
 
 namespace gs {
 
 double PhysicsConfig::box() const {
+  // Exact: an integer under 2^15 times a 21-bit fraction. CellGrid then finds this many cells of
+  // exactly kUnboundedCellSide.
+  if (unbounded()) return unbounded_cells_per_side(*this) * kUnboundedCellSide;
   const double n = lattice > 0 ? 1.0 / lattice : density;
   return std::pow(static_cast<double>(particles) / n, 1.0 / dim);
 }
@@ -22,6 +26,13 @@ double PhysicsConfig::box() const {
 double PhysicsConfig::paper_time(double t) const {
   const double n = lattice > 0 ? 1.0 / lattice : density;
   return t * speed * std::pow(n, 1.0 / dim);
+}
+
+int unbounded_cells_per_side(const PhysicsConfig& c) {
+  // 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1290^3 < 2^31 (1D: validate refuses).
+  const double most = c.dim == 3 ? 1290 : 32766;
+  const double side = std::pow(static_cast<double>(c.particles) / c.density, 1.0 / c.dim);
+  return 2 * static_cast<int>(std::clamp(std::ceil(2 * side / kUnboundedCellSide), 8.0, most / 2));
 }
 
 double max_rsa_density(int dim) {
@@ -88,6 +99,11 @@ void validate(const PhysicsConfig& c) {
   if (c.realisation > static_cast<std::uint64_t>(INT64_MAX))
     bad("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
          std::to_string(INT64_MAX) + "]");
+  if (c.unbounded()) {
+    if (c.dim == 1) bad("--medium unbounded: exists only in 2D and 3D (--dim 2 or 3)");
+    if (c.initial != Initial::Kick) bad("--medium unbounded: only for --initial kick");
+    if (c.lattice != 0.0) bad("--medium unbounded: not with --lattice");
+  }
   if (c.lattice != 0.0) {
     if (c.dim != 1) bad("--lattice: a lattice start exists only in 1D (--dim 1)");
     if (!(c.lattice > 1.0) || !std::isfinite(c.lattice))
@@ -113,6 +129,13 @@ void validate(const PhysicsConfig& c) {
     bad("--t-max " + num(c.t_max) + ": must be positive");
   if (c.initial == Initial::Thermal && !(c.temperature > 0 && std::isfinite(c.temperature)))
     bad("--temperature " + num(c.temperature) + ": must be positive");
+  if (c.unbounded()) {
+    // The box's limits below do not apply; the medium's calibration has its own (it names
+    // --density).
+    medium_candidate_density(c.dim, c.density);
+    check_memory(c, 0);
+    return;
+  }
   // Below three diameters a particle could meet its own periodic image within the cell stencil.
   if (c.box() < 3.0)
     fail("--particles " + std::to_string(c.particles) + ": box side " + num(c.box()) +
@@ -144,6 +167,14 @@ double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
   const double engine = 64 + 32 + 16 + 8 + 4 + 4 * d + 8 + 4 + 8;
   const double initial = 32 * d + 48;
   const double snapshot = 65 + 140;
+  if (c.unbounded()) {
+    // At most N particles made, with no initial state; a made cell's list head (4 B) and its
+    // place in the list of made cells (4 B), about 2/n cells per particle with the shell beyond
+    // the front, and the medium's memo of candidates (cleared at kMemoCandidates, sim/engine.h).
+    const double cells = 2.0 / (c.density * std::pow(kUnboundedCellSide, d)) * 8;
+    return static_cast<double>(c.particles) * (engine + cells + snapshot * snapshot_copies) +
+           (1 << 20) * 48.0;
+  }
   const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
   return static_cast<double>(c.particles) * (engine + initial + snapshot * snapshot_copies) +
          8 * cells;
@@ -168,6 +199,9 @@ const char* to_string(Initial i) {
 const char* to_string(KickSite k) {
   return k == KickSite::Random ? "random" : "centre";
 }
+const char* to_string(Medium m) {
+  return m == Medium::Box ? "box" : "unbounded";
+}
 
 Initial parse_initial(const std::string& word) {
   if (word != "kick" && word != "thermal")
@@ -178,6 +212,12 @@ KickSite parse_kick_site(const std::string& word) {
   if (word != "random" && word != "centre")
     throw UserError("--kick-site: '" + word + "' is not random or centre");
   return word == "random" ? KickSite::Random : KickSite::Centre;
+}
+
+Medium parse_medium(const std::string& word) {
+  if (word != "box" && word != "unbounded")
+    throw UserError("--medium: '" + word + "' is not box or unbounded");
+  return word == "box" ? Medium::Box : Medium::Unbounded;
 }
 
 std::string to_toml(const PhysicsConfig& c) {
@@ -195,6 +235,9 @@ std::string to_toml(const PhysicsConfig& c) {
   o << "kick-site = \"" << to_string(c.kick_site) << "\"\n";
   o << "temperature = " << num(c.temperature) << "\n";
   o << "lattice = " << num(c.lattice) << "\n";
+  // Box runs write no key, so that their run.toml and checkpoints (which hold these lines) stay
+  // those of the runs made before the medium existed, and resume.
+  if (c.unbounded()) o << "medium = \"" << to_string(c.medium) << "\"\n";
   return o.str();
 }
 

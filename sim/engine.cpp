@@ -3,12 +3,15 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 #include "sim/collision.h"
 #include "sim/error.h"
+#include "sim/format.h"
 #include "sim/huge_pages.h"
 #include "sim/observables.h"
+#include "sim/rng.h"
 
 namespace gs {
 
@@ -27,13 +30,14 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   // the peak memory of a start is what the engine holds, not that plus the state (48 B a
   // sphere; sim/bytes_per_particle_3d).
   init = InitialState<D>{};
+  reserve_particles(n);
   image_.assign(n, IVec<D>::Zero());
-  head_.assign(grid_.cell_count(), -1);
+  head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
+  std::fill_n(head_.data(), head_.size(), kEmptyCell);
   next_.assign(n, -1);
   prev_.assign(n, -1);
   pred_.assign(n, Prediction{});
   first_collision_.assign(n, -1.0);
-  moved_.reserve(n);
 
   for (std::size_t i = 0; i < n; ++i) {
     const auto id = static_cast<std::int32_t>(i);
@@ -54,6 +58,139 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
 }
 
 template <int D>
+Engine<D>::Engine(const PhysicsConfig& c)
+    : config_(c), grid_(c.box()), queue_(0, static_cast<std::size_t>(c.particles)) {
+  GS_CHECK(D > 1 && c.unbounded() && c.initial == Initial::Kick);
+  GS_CHECK(grid_.side() == kUnboundedCellSide && grid_.per_side() <= INT16_MAX);
+  reserve_particles(static_cast<std::size_t>(c.particles));
+  head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
+  medium_ = std::make_unique<UnboundedMedium<D>>(
+      MediumOptions{D, c.density, grid_.side(), c.seed, c.realisation});
+  kick_nearest_centre();
+}
+
+// The particles of the unbounded medium are made in rings of cells around the centre until the
+// nearest one is known (every cell within its distance made); it gets the kick. The medium's
+// origin is the box centre, where the kicks of box runs are too.
+template <int D>
+void Engine<D>::kick_nearest_centre() {
+  const int middle = grid_.per_side() / 2;
+  const double centre = middle * grid_.side();
+  std::int32_t kicked = -1;
+  double best = INFINITY;
+  // Cells middle - ring .. middle + ring hold every point within ring cell sides of the centre
+  // (the corner of cell `middle`).
+  for (int ring = 1;; ++ring) {
+    const IVec<D> lo = IVec<D>::Constant(middle - ring);
+    for (IVec<D> c = lo;;) {
+      const std::int32_t cell = grid_.index(c);
+      if (head_[cell] == kUnmadeCell) make_cell(cell);
+      int k = 0;
+      for (; k < D; ++k) {  // the next cell of the cube, x fastest
+        if (++c[k] <= middle + ring) break;
+        c[k] = lo[k];
+      }
+      if (k == D) break;
+    }
+    for (std::int32_t i = 0; i < size(); ++i) {
+      const double d = (kin_[i].x - Vec<D>::Constant(centre)).norm();
+      if (d < best) best = d, kicked = i;  // ties: the first made
+    }
+    if (kicked >= 0 && best <= ring * grid_.side()) break;
+  }
+  Rng kick_rng(config_.seed, config_.realisation, Stream::Kick);
+  kin_[kicked].v = config_.speed * random_direction<D>(kick_rng);
+  mark_moving(kicked);
+  predict(kicked);
+}
+
+// Room for n particles in every per-particle array, so that the unbounded medium's new particles
+// never move them (references stay valid, the hot loop never reallocates). Reserved memory is
+// address space until it is written.
+template <int D>
+void Engine<D>::reserve_particles(std::size_t n) {
+  capacity_ = n;
+  kin_.reserve(n);
+  tag_.reserve(n);
+  image_.reserve(n);
+  next_.reserve(n);
+  prev_.reserve(n);
+  pred_.reserve(n);
+  first_collision_.reserve(n);
+  moved_.reserve(n);
+}
+
+template <int D>
+void Engine<D>::make_cell(std::int32_t cell) {
+  const int side = grid_.per_side(), middle = side / 2;
+  IVec<D> c;
+  typename UnboundedMedium<D>::Cell key;
+  for (int k = 0, rest = cell; k < D; ++k, rest /= side) {
+    c[k] = rest % side;
+    key[k] = c[k] - middle;
+    // The stencil of a particle in the outermost cells would wrap round the periodic grid.
+    if (c[k] == 0 || c[k] == side - 1)
+      throw UserError("--t-max " + format_double(config_.t_max) +
+                      ": the front reached the edge of the unbounded medium's addressable "
+                      "region (radius " +
+                      format_double((middle - 1) * grid_.side()) +
+                      " diameters, set by --particles) at t = " + format_double(now_) +
+                      "; use a smaller --t-max or a larger --particles");
+  }
+  fresh_.clear();
+  medium_->particles(key, fresh_);
+  if (kin_.size() + fresh_.size() > capacity_)
+    throw UserError("--particles " + std::to_string(config_.particles) +
+                    ": the unbounded medium has made as many particles as it may by t = " +
+                    format_double(now_) + "; raise --particles or lower --t-max");
+  if (medium_->cached_candidates() > kMemoCandidates) medium_->clear();
+  head_[cell] = kEmptyCell;
+  made_.push_back(cell);
+  const Vec<D> shift = Vec<D>::Constant(middle * grid_.side());
+  for (const Vec<D>& x : fresh_) {
+    // Within the reserved capacity (checked above): nothing moves.
+    const auto i = static_cast<std::int32_t>(kin_.size());
+    kin_.push_back({x + shift, 0.0, Vec<D>::Zero(), 0});
+    tag_.push_back(i);
+    image_.push_back(IVec<D>::Zero());
+    next_.push_back(-1);
+    prev_.push_back(-1);
+    pred_.push_back(Prediction{});
+    first_collision_.push_back(-1.0);
+    queue_.grow(kin_.size());
+    // Its medium cell, whatever round-off the shift made: the engine tolerates a hair outside.
+    set_cell(i, c);
+    cell_insert(i, cell);
+  }
+}
+
+namespace {
+
+// A box's cell heads in a checkpoint: the first particle of each cell or -1, as before heads
+// were offset (checkpoints of box runs keep their format).
+void save_heads(StateWriter& out, const ZeroPages<std::int32_t>& head, std::int32_t offset) {
+  out.value(static_cast<std::uint64_t>(head.size()));
+  std::int32_t chunk[4096];
+  for (std::size_t at = 0; at < head.size(); at += std::size(chunk)) {
+    const std::size_t n = std::min(std::size(chunk), head.size() - at);
+    for (std::size_t k = 0; k < n; ++k) chunk[k] = head[at + k] - offset;
+    out.bytes(chunk, n * sizeof(std::int32_t));
+  }
+}
+
+void load_heads(StateReader& in, ZeroPages<std::int32_t>& head, std::int32_t offset) {
+  in.expect(in.value<std::uint64_t>() == head.size());
+  std::int32_t chunk[4096];
+  for (std::size_t at = 0; at < head.size(); at += std::size(chunk)) {
+    const std::size_t n = std::min(std::size(chunk), head.size() - at);
+    in.bytes(chunk, n * sizeof(std::int32_t));
+    for (std::size_t k = 0; k < n; ++k) head[at + k] = chunk[k] + offset;
+  }
+}
+
+}  // namespace
+
+template <int D>
 void Engine<D>::save(StateWriter& out) const {
   out.string(to_toml(config_));
   out.value(now_);
@@ -61,7 +198,15 @@ void Engine<D>::save(StateWriter& out) const {
   out.vector(kin_);
   out.vector(tag_);
   out.vector(image_);
-  out.vector(head_);
+  if (medium_) {
+    // The made cells and their heads: the rest of the grid is zero pages.
+    std::vector<std::int32_t> heads(made_.size());
+    for (std::size_t k = 0; k < made_.size(); ++k) heads[k] = head_[made_[k]];
+    out.vector(made_);
+    out.vector(heads);
+  } else {
+    save_heads(out, head_, kHeadOffset);
+  }
   out.vector(next_);
   out.vector(prev_);
   out.vector(pred_);
@@ -74,16 +219,39 @@ void Engine<D>::save(StateWriter& out) const {
 
 template <int D>
 Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
-    : config_(c), grid_(c.box()), queue_(static_cast<std::size_t>(c.particles)) {
+    : config_(c),
+      grid_(c.box()),
+      queue_(c.unbounded() ? 0 : static_cast<std::size_t>(c.particles),
+             static_cast<std::size_t>(c.particles)) {
   if (in.string() != to_toml(c))
     throw UserError("the checkpoint is of a run with other physics than its run.toml");
-  const auto n = static_cast<std::size_t>(c.particles);
+  const auto cap = static_cast<std::size_t>(c.particles);
+  reserve_particles(cap);  // before reading: a stream's arrays must not move later
   in.value(now_);
   in.value(stats_);
   in.vector(kin_);
+  in.expect(kin_.size() <= cap);
+  const std::size_t n = c.unbounded() ? kin_.size() : cap;
   in.vector(tag_);
   in.vector(image_);
-  in.vector(head_);
+  if (c.unbounded()) {
+    GS_CHECK(D > 1);
+    head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
+    medium_ = std::make_unique<UnboundedMedium<D>>(
+        MediumOptions{D, c.density, grid_.side(), c.seed, c.realisation});
+    std::vector<std::int32_t> heads;
+    in.vector(made_);
+    in.vector(heads);
+    in.expect(heads.size() == made_.size());
+    for (std::size_t k = 0; k < made_.size(); ++k) {
+      in.expect(made_[k] >= 0 && static_cast<std::size_t>(made_[k]) < head_.size() &&
+                heads[k] >= kEmptyCell && heads[k] < static_cast<std::int64_t>(n) + kHeadOffset);
+      head_[made_[k]] = heads[k];
+    }
+  } else {
+    head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
+    load_heads(in, head_, kHeadOffset);
+  }
   in.vector(next_);
   in.vector(prev_);
   in.vector(pred_);
@@ -92,10 +260,9 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   in.vector(moved_);
   in.vector(cluster_lo_);
   in.vector(cluster_hi_);
-  in.expect(kin_.size() == n && tag_.size() == n && image_.size() == n &&
-            head_.size() == grid_.cell_count() && next_.size() == n && prev_.size() == n &&
-            pred_.size() == n && first_collision_.size() == n && moved_.size() <= n);
-  moved_.reserve(n);  // as the constructor: mark_moving() never reallocates
+  in.expect(kin_.size() == n && tag_.size() == n && image_.size() == n && next_.size() == n &&
+            prev_.size() == n && pred_.size() == n && first_collision_.size() == n &&
+            moved_.size() <= n && queue_.particles() == n);
 }
 
 namespace {
@@ -134,10 +301,11 @@ void Engine<D>::sort_by_cell(const InitialState<D>& init) {
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  next_[i] = head_[cell];
+  const std::int32_t first = head_[cell] - kHeadOffset;  // -1: the cell is empty
+  next_[i] = first;
   prev_[i] = -1;
-  if (head_[cell] >= 0) prev_[head_[cell]] = i;
-  head_[cell] = i;
+  if (first >= 0) prev_[first] = i;
+  head_[cell] = i + kHeadOffset;
 }
 
 template <int D>
@@ -146,7 +314,7 @@ void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
   if (prev_[i] >= 0)
     next_[prev_[i]] = next;
   else
-    head_[cell] = next;
+    head_[cell] = next + kHeadOffset;
   if (next >= 0) prev_[next] = prev_[i];
 }
 
@@ -154,7 +322,7 @@ template <int D>
 void Engine<D>::mark_moving(std::int32_t i) {
   if (kin_[i].moving) return;
   kin_[i].moving = true;
-  moved_.push_back(i);  // capacity reserved for all particles: never reallocates
+  moved_.push_back(i);  // capacity reserved for every particle there may be: never reallocates
 }
 
 template <int D>
@@ -191,12 +359,16 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 // walking them does not wait on the particles, and the particles' lines arrive while the lists
 // of the other cells (or of the other sphere of a collision) are still being walked.
 template <int D>
-template <class ForEachCell>
+template <bool kMakes, class ForEachCell>
 void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
   std::int32_t first[27];
   int cells = 0;
   for_each_cell([&](std::int32_t cell) {
-    const std::int32_t h = head_[cell];
+    // A cell that comes into a moving particle's reach is made first.
+    if constexpr (kMakes)
+      if (head_[cell] == kUnmadeCell) [[unlikely]]
+        make_cell(cell);
+    const std::int32_t h = head_[cell] - kHeadOffset;
     first[cells] = h;
     cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
   });
@@ -213,7 +385,7 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
 
 template <int D>
 void Engine<D>::gather_stencil(std::int32_t i, Neighbours& nb) {
-  gather(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
+  gather_cells(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
 }
 
 // Looks for a collision of i (at xi now) with the gathered particles earlier than its current
@@ -472,7 +644,8 @@ void Engine<D>::cross_cell(std::int32_t i) {
   const Vec<D> xi = kin_[i].x;
   predict_crossing(i, xi);
   queue_.prefetch_bucket(std::min(pred_[i].coll_time, pred_[i].cross_time));
-  gather(i, near_[0], [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
+  gather_cells(i, near_[0],
+               [&](auto&& f) { grid_.for_each_in_layer(cell, k, grid_.wrap(c + step), f); });
   search(i, xi, near_[0]);
   schedule(i);
 }
@@ -532,7 +705,9 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
   // An event-driven run has no time step: its step is the collisions so far, which grows with
   // the time as a step does (GSD's configuration/step, OVITO's Timestep).
   s.info.step = stats_.collisions;
-  s.info.density = static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
+  // The unbounded medium's box is the addressable region, almost all of it never made.
+  s.info.density =
+      medium_ ? config_.density : static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;
@@ -594,7 +769,7 @@ double Engine<D>::max_overlap_now() const {
   for (std::int32_t i = 0; i < n; ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_of(i), [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell]; j >= 0; j = next_[j])
+      for (std::int32_t j = head_[cell] - kHeadOffset; j >= 0; j = next_[j])
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
     });
   }
@@ -618,6 +793,10 @@ std::unique_ptr<Simulation> load_simulation(const PhysicsConfig& c, StateReader&
 
 std::unique_ptr<Simulation> make_simulation(const PhysicsConfig& c) {
   validate(c);
+  if (c.unbounded()) {  // validate() allows it in 2D and 3D only
+    if (c.dim == 2) return std::make_unique<Engine<2>>(c);
+    return std::make_unique<Engine<3>>(c);
+  }
   switch (c.dim) {
     case 1:
       return std::make_unique<Engine<1>>(c, make_initial_state<1>(c));

@@ -9,6 +9,13 @@
 // predicts again. Positions are updated lazily (each particle keeps the time its position refers
 // to). A particle that has never moved is in no list but its cell's and costs nothing, so a kick
 // run costs what its active particles cost, not what N costs.
+//
+// In the unbounded medium (--medium unbounded) the box is a grid far larger than a front ever
+// gets, whose cells are made only when a moving particle's stencil first reaches them: their
+// particles come from UnboundedMedium (sim/unbounded_medium.h) and are appended at rest, so a run
+// holds the particles near the front and pays nothing for the rest. The per-particle arrays are
+// reserved up front for the most particles the run may make (--particles) and grown into, so the
+// hot loop never reallocates; the cell heads are zero pages until their cell is made.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -23,7 +30,9 @@
 #include "sim/initial.h"
 #include "sim/snapshot.h"
 #include "sim/state_stream.h"
+#include "sim/unbounded_medium.h"
 #include "sim/vec.h"
+#include "sim/zero_pages.h"
 
 namespace gs {
 
@@ -97,6 +106,9 @@ template <int D>
 class Engine final : public Simulation {
  public:
   Engine(const PhysicsConfig& c, InitialState<D> init);
+  // A kick in the unbounded medium (c.unbounded(), D = 2 or 3): the particle nearest the box
+  // centre is kicked, and the medium is made around it as the front spreads.
+  explicit Engine(const PhysicsConfig& c);
   Engine(const PhysicsConfig& c, StateReader& in);
 
   int dim() const override { return D; }
@@ -131,8 +143,17 @@ class Engine final : public Simulation {
     int count = 0;
     std::int32_t who[kMax];
   };
-  template <class ForEachCell>
+  // kMakes: the unbounded medium, whose cells are made as they come into reach (a box's all
+  // exist; the two are apart so that a box pays nothing for the test).
+  template <bool kMakes, class ForEachCell>
   void gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell);
+  template <class ForEachCell>
+  void gather_cells(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
+    if (medium_)
+      gather<true>(i, nb, for_each_cell);
+    else
+      gather<false>(i, nb, for_each_cell);
+  }
   void gather_stencil(std::int32_t i, Neighbours& nb);
   void search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb);
   void predict(std::int32_t i);
@@ -148,6 +169,9 @@ class Engine final : public Simulation {
   void snapshot_info(Snapshot& s) const;  // the header every snapshot shares
   void cell_insert(std::int32_t i, std::int32_t cell);
   void cell_remove(std::int32_t i, std::int32_t cell);
+  void reserve_particles(std::size_t n);
+  [[gnu::cold]] void make_cell(std::int32_t cell);  // the unbounded medium: appends its particles
+  void kick_nearest_centre();
 
   PhysicsConfig config_;
   CellGrid<D> grid_;
@@ -172,8 +196,12 @@ class Engine final : public Simulation {
   std::vector<IVec<D>> image_;
 
   // Cells as doubly linked lists, apart from the particle data: a search walks them without
-  // waiting for each particle's cache line.
-  HugeVector<std::int32_t> head_, next_, prev_;
+  // waiting for each particle's cache line. A cell's head holds its first particle plus
+  // kHeadOffset: 1 is an empty cell and 0 (an untouched zero page) a cell of the unbounded
+  // medium not made yet, which a search reads as empty.
+  static constexpr std::int32_t kHeadOffset = 2, kEmptyCell = 1, kUnmadeCell = 0;
+  ZeroPages<std::int32_t> head_;
+  HugeVector<std::int32_t> next_, prev_;
 
   // The next event of each particle (best collision and next crossing) and its cell, in one half
   // cache line: every event reads all of it, and cells in an array of their own cost one more
@@ -203,6 +231,16 @@ class Engine final : public Simulation {
 
   std::vector<double> first_collision_;
   std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
+
+  // The unbounded medium (none in a box): its generator, the cells made so far in the order they
+  // were made (what a checkpoint keeps of the grid), a cell's new particles, and the most
+  // particles the run may make. The generator's memo is dropped past kMemoCandidates (about
+  // 40 MB); what it makes does not depend on it.
+  static constexpr std::size_t kMemoCandidates = std::size_t{1} << 20;
+  std::unique_ptr<UnboundedMedium<D>> medium_;
+  std::vector<std::int32_t> made_;
+  VecArray<D> fresh_;
+  std::size_t capacity_ = 0;
 
   // Sticky clusters (1D, r = 0): particles are indexed along the line, a cluster is a cyclic
   // index range, and its two ends know each other.

@@ -12,7 +12,8 @@
 // one event per unit time to hundreds of thousands and back as the band slows) and nb follows
 // the number of events: the occupancy near the front of the calendar is checked every ~size/4
 // events, and the calendar is rebuilt when it is off. All storage is sized once for all
-// particles; the hot loop never allocates.
+// particles (in the unbounded medium: reserved for the most it may make, and grown into as
+// particles are made); the hot loop never allocates.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -27,12 +28,22 @@ namespace gs {
 
 class EventQueue {
  public:
-  explicit EventQueue(std::size_t n) : entry_(n) {
-    all_.reserve(n);
-    times_.reserve(n);
-    head_.reserve(std::bit_ceil(std::max(2 * n, kMinBuckets)));
+  // Entries for particles 0 .. n-1, room (address space, not memory) for `capacity`.
+  explicit EventQueue(std::size_t n, std::size_t capacity = 0) : capacity_(std::max(n, capacity)) {
+    entry_.reserve(capacity_);
+    entry_.resize(n);
+    all_.reserve(capacity_);
+    times_.reserve(capacity_);
+    head_.reserve(std::bit_ceil(std::max(2 * capacity_, kMinBuckets)));
     rebuild(kMinBuckets);
   }
+
+  // Entries for particles 0 .. n-1 (n up to the capacity): the unbounded medium's new particles.
+  void grow(std::size_t n) {
+    GS_CHECK(n <= capacity_);
+    entry_.resize(n);
+  }
+  std::size_t particles() const { return entry_.size(); }
 
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
@@ -152,11 +163,10 @@ class EventQueue {
     out.value(next_check_);
   }
   void load(StateReader& in) {
-    const std::size_t n = entry_.size();
-    in.vector(entry_);
+    in.vector(entry_);  // within the reserved capacity when the engine's checks pass
     in.vector(head_);
-    in.expect(entry_.size() == n && std::has_single_bit(head_.size()));
-    head_.reserve(std::bit_ceil(std::max(2 * n, kMinBuckets)));  // as the constructor: no growth
+    in.expect(entry_.size() <= capacity_ && std::has_single_bit(head_.size()));
+    head_.reserve(std::bit_ceil(std::max(2 * capacity_, kMinBuckets)));  // as the constructor
     in.value(overflow_);
     in.value(mask_);
     in.value(width_);
@@ -171,7 +181,7 @@ class EventQueue {
     in.value(floor_);
     in.value(finds_);
     in.value(next_check_);
-    in.expect(mask_ + 1 == head_.size() && size_ <= n &&
+    in.expect(mask_ + 1 == head_.size() && size_ <= entry_.size() &&
               calendar_count_ + overflow_count_ == size_);
   }
 
@@ -329,6 +339,7 @@ class EventQueue {
     top_ = kNone;
   }
 
+  std::size_t capacity_;
   HugeVector<Entry> entry_;  // read at random, like the engine's particle arrays
   std::vector<std::int32_t> head_;
   std::int32_t overflow_ = kNone;

@@ -130,19 +130,6 @@ VecArray<D> thermal_velocities(std::int64_t count, double temperature, Rng& rng)
   return vel;
 }
 
-namespace {
-
-// In 1D an exact uniform sample of non-overlapping rods exists: N uniform points on a line of
-// length L - N, sorted, the i-th shifted by i diameters. It reaches any density below 1.
-VecArray<1> random_rods(std::int64_t n, double box, Rng& rng) {
-  std::vector<double> u(static_cast<std::size_t>(n));
-  for (auto& x : u) x = rng.uniform() * (box - static_cast<double>(n));
-  std::sort(u.begin(), u.end());
-  VecArray<1> pos(u.size());
-  for (std::size_t i = 0; i < u.size(); ++i) pos[i][0] = u[i] + static_cast<double>(i) + 0.5;
-  return pos;
-}
-
 template <int D>
 Vec<D> random_direction(Rng& rng) {
   if constexpr (D == 1) {
@@ -155,6 +142,19 @@ Vec<D> random_direction(Rng& rng) {
       if (norm > 1e-12) return v / norm;
     }
   }
+}
+
+namespace {
+
+// In 1D an exact uniform sample of non-overlapping rods exists: N uniform points on a line of
+// length L - N, sorted, the i-th shifted by i diameters. It reaches any density below 1.
+VecArray<1> random_rods(std::int64_t n, double box, Rng& rng) {
+  std::vector<double> u(static_cast<std::size_t>(n));
+  for (auto& x : u) x = rng.uniform() * (box - static_cast<double>(n));
+  std::sort(u.begin(), u.end());
+  VecArray<1> pos(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) pos[i][0] = u[i] + static_cast<double>(i) + 0.5;
+  return pos;
 }
 
 // Translates the periodic system so that the kicked particle sits at the centre of the box, as in
@@ -236,6 +236,9 @@ template VecArray<3> cubic_lattice<3>(std::int64_t, double, Rng&);
 template VecArray<1> thermal_velocities<1>(std::int64_t, double, Rng&);
 template VecArray<2> thermal_velocities<2>(std::int64_t, double, Rng&);
 template VecArray<3> thermal_velocities<3>(std::int64_t, double, Rng&);
+template Vec<1> random_direction<1>(Rng&);
+template Vec<2> random_direction<2>(Rng&);
+template Vec<3> random_direction<3>(Rng&);
 template InitialState<1> make_initial_state<1>(const PhysicsConfig&);
 template InitialState<2> make_initial_state<2>(const PhysicsConfig&);
 template InitialState<3> make_initial_state<3>(const PhysicsConfig&);

@@ -34,6 +34,10 @@ VecArray<D> thermal_velocities(std::int64_t n, double temperature, Rng& rng);
 template <int D>
 VecArray<D> cubic_lattice(std::int64_t n, double box, Rng& rng);
 
+// The direction of a kick: uniform on the unit sphere (in 1D, left or right).
+template <int D>
+Vec<D> random_direction(Rng& rng);
+
 template <int D>
 InitialState<D> make_initial_state(const PhysicsConfig& c);
 

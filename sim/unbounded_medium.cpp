@@ -208,12 +208,17 @@ typename UnboundedMedium<D>::Range UnboundedMedium<D>::cell(const Cell& c) {
     block[k] = c[k] >= 0 ? c[k] / kBlock : -((-c[k] - 1) / kBlock) - 1;
     local = local * kBlock + static_cast<int>(c[k] - block[k] * kBlock);
   }
-  auto it = blocks_.find(block);
-  if (it == blocks_.end()) {
-    draw_block(block);
-    it = blocks_.find(block);
+  if (!has_last_ || block != last_block_) {
+    auto it = blocks_.find(block);
+    if (it == blocks_.end()) {
+      draw_block(block);
+      it = blocks_.find(block);
+    }
+    last_block_ = block;
+    last_ = it->second;
+    has_last_ = true;
   }
-  const Block& b = it->second;
+  const Block& b = last_;
   const std::uint32_t* o = &offsets_[b.first_offset + static_cast<std::uint32_t>(local)];
   return {b.first_candidate + o[0], o[1] - o[0]};
 }
@@ -306,6 +311,7 @@ void UnboundedMedium<D>::clear() {
   pool_ = {};
   offsets_ = {};
   blocks_ = {};
+  has_last_ = false;
 }
 
 template class UnboundedMedium<1>;

@@ -56,6 +56,30 @@ TEST(CliRun, WritesTheRunFolder) {
   EXPECT_DOUBLE_EQ(s.info.time, 300.0);
 }
 
+// The unbounded medium: the snapshots hold the particles made (fewer than --particles allows),
+// the pictures frame the active ones, and a run that needs more particles stops naming the flag.
+TEST(CliRun, UnboundedMediumRun) {
+  const auto dir = scratch_dir("unbounded");
+  const std::string args =
+      "run --medium unbounded --particles 20000 --t-max 300 "
+      "--restitution 0.5 --quiet --png --width 320 --height 320 --out ";
+  auto r = grainshock(args + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Snapshot s = read_snapshot((dir / "snapshots/tsim_300.xyz").string());
+  const Table ts = read_csv(dir / "timeseries.csv");
+  const double active = ts.column("active")[ts.rows() - 1];
+  EXPECT_GT(active, 50);
+  EXPECT_GT(s.size(), static_cast<std::size_t>(active));
+  EXPECT_LT(s.size(), 20000u);
+  EXPECT_TRUE(fs::exists(dir / "frames/tsim_300.png"));
+  EXPECT_NE(read_file(dir / "run.toml").find("medium = \"unbounded\""), std::string::npos);
+  r = grainshock("run --medium unbounded --particles 500 --t-max 3000 --quiet --out " +
+                 scratch_dir("unbounded_full").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--particles 500"), std::string::npos) << r.err;
+}
+
 TEST(CliRun, PicturesOfSnapshotsOverlayAndElasticComparison) {
   const auto dir = scratch_dir("png");
   const auto r = grainshock("run " + kSmall +
@@ -163,6 +187,11 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --snapshot-format pdb", "--snapshot-format"},
       {"run --snapshot-particles moving", "--snapshot-particles"},
       {"run --dim 1 --particles 100 --snapshot-format gsd", "use xyz in 1D"},
+      {"run --medium open", "--medium"},
+      {"run --medium unbounded --dim 1", "--medium"},
+      {"run --medium unbounded --initial thermal", "--medium"},
+      {"run --medium unbounded --density 0.6", "--density"},
+      {"movie --medium unbounded --camera fixed", "--camera"},
   };
   for (const auto& [args, names] : cases) {
     const auto r = grainshock(args + out);

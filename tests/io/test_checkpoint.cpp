@@ -75,6 +75,28 @@ TEST(Checkpoint, KickContinuesTheSameHistory2DAnd3D) {
   }
 }
 
+// The unbounded medium's checkpoint holds the cells made so far (a short list, not the
+// addressable grid); the loaded engine makes the same cells at the same events.
+TEST(Checkpoint, UnboundedMediumContinuesTheSameHistory) {
+  for (int dim : {2, 3}) {
+    PhysicsConfig c;
+    c.dim = dim;
+    c.medium = Medium::Unbounded;
+    c.particles = 100000;
+    c.restitution = 0.5;
+    auto a = make_simulation(c);
+    a->run_until(300);
+    const fs::path file = scratch("unbounded" + std::to_string(dim) + ".bin");
+    save(*a, file);
+    EXPECT_LT(fs::file_size(file), 200 * a->snapshot().size() + 4096) << "a sparse checkpoint";
+    auto b = load(c, file);
+    const std::size_t made = a->snapshot().size();
+    expect_same_history(*a, *b, 200000);
+    EXPECT_GT(a->stats().collisions, 10000) << "the comparison saw a real history";
+    EXPECT_GT(a->snapshot().size(), made) << "and cells made after the load";
+  }
+}
+
 TEST(Checkpoint, ThermalAnd1DStickyContinueTheSameHistory) {
   PhysicsConfig thermal;
   thermal.dim = 3;
