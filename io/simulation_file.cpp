@@ -8,7 +8,10 @@
 namespace gs {
 namespace {
 
-constexpr const char* kTag = "grainshock simulation";
+// The PhysicsConfig is stored as its bytes, so the tag changes with its layout: version 2 added
+// `medium` (issue 31). A file of an older layout is named as such instead of being misread.
+constexpr const char* kTag = "grainshock simulation 2";
+constexpr const char* kOldTag = "grainshock simulation";
 
 }  // namespace
 
@@ -26,7 +29,12 @@ void save_simulation(const Simulation& sim, const std::filesystem::path& path) {
 
 std::unique_ptr<Simulation> load_simulation_file(const std::filesystem::path& path) {
   CheckpointReader in(path);
-  if (in.string() != kTag)
+  const std::string tag = in.string();
+  if (tag == kOldTag)
+    throw UserError("'" + path.string() +
+                    "' was saved by an older grainshock (before --medium): load it with that "
+                    "version, or run it again");
+  if (tag != kTag)
     throw UserError("'" + path.string() + "' is a checkpoint, but not of a saved Simulation");
   const auto c = in.value<PhysicsConfig>();
   auto sim = load_simulation(c, in);

@@ -9,6 +9,7 @@
 
 #include "io/append_file.h"
 #include "io/checkpoint.h"
+#include "io/simulation_file.h"
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/initial.h"
@@ -201,6 +202,31 @@ TEST(Checkpoint, DamagedOrForeignFilesAreRefusedInOneLine) {
   other.restitution = 0.5;
   EXPECT_NE(refusal(other, file).find("other physics"), std::string::npos);
   EXPECT_EQ(refusal(c, file), "(accepted)");
+}
+
+// A saved Simulation stores its PhysicsConfig as bytes; one saved before `medium` was added has
+// the old tag and a shorter config, and is named as such rather than read with shifted fields.
+TEST(SimulationFile, ALayoutBeforeTheMediumIsNamedAndTheCurrentOneLoads) {
+  PhysicsConfig c;
+  c.particles = 2000;
+  auto sim = make_simulation(c);
+  sim->run_until(50);
+  const fs::path file = scratch("sim.bin"), old = file.parent_path() / "old.bin";
+  save_simulation(*sim, file);
+  EXPECT_EQ(load_simulation_file(file)->time(), 50.0);
+  {
+    CheckpointWriter out(old, old.string() + ".prev", {c.dim, 2000});
+    out.string("grainshock simulation");
+    out.value(c);
+    sim->save(out);
+    out.commit();
+  }
+  try {
+    load_simulation_file(old);
+    ADD_FAILURE() << "a file of the old layout was loaded";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("older grainshock"), std::string::npos) << e.what();
+  }
 }
 
 // A full disk: the write fails naming the OS reason, and what the file holds ends on a record.
