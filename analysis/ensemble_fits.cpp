@@ -30,36 +30,32 @@ std::string window_text(const Window& w) {
   return "[" + format_number(w.t_lo) + ", " + format_number(w.t_hi) + "]";
 }
 
-// alpha from an exponent x of the quantity: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2),
-// R ~ t^alpha, dR/dt ~ t^(alpha - 1).
 void implied_alpha(ExponentFit& e, int d, double half) {
-  const double x = e.fit.exponent;
-  if (e.quantity == "N_t") {
-    e.alpha = x / d;
-    e.alpha_uncertainty = half / d;
-  } else if (e.quantity == "E_t") {
-    e.alpha = (x + 2) / (d + 2);
-    e.alpha_uncertainty = half / (d + 2);
-  } else if (e.quantity == "R_t" || e.quantity == "R_front") {
-    e.alpha = x;
-    e.alpha_uncertainty = half;
-  } else if (e.quantity == "dR_front/dt") {
-    e.alpha = x + 1;
-    e.alpha_uncertainty = half;
-  }
+  e.alpha = alpha_from_exponent(e.quantity, d, e.fit.exponent);
+  // The maps are affine: the half width scales by their slope.
+  e.alpha_uncertainty =
+      half * (alpha_from_exponent(e.quantity, d, 1) - alpha_from_exponent(e.quantity, d, 0));
 }
 
 }  // namespace
+
+double alpha_from_exponent(const std::string& quantity, int d, double x) {
+  if (quantity == "N_t") return x / d;
+  if (quantity == "E_t") return (x + 2) / (d + 2);
+  if (quantity == "R_t" || quantity == "R_front") return x;
+  if (quantity == "dR_front/dt") return x + 1;
+  return std::numeric_limits<double>::quiet_NaN();
+}
 
 void check_window(const EnsembleSpec& spec, const Window& w) {
   const auto t = sample_times(spec);
   if (!(w.t_lo > 0 && w.t_hi > w.t_lo))
     throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
-                    ": need 0 < T1 < T2");
+                     ": need 0 < T1 < T2");
   if (w.t_lo < t.front() || w.t_hi > t.back())
     throw UsageError("--window " + format_number(w.t_lo) + "," + format_number(w.t_hi) +
-                    " lies outside the data [" + format_number(t.front()) + ", " +
-                    format_number(t.back()) + "]");
+                     " lies outside the data [" + format_number(t.front()) + ", " +
+                     format_number(t.back()) + "]");
 }
 
 double EnsembleFits::last_scalar(const char* name) const {

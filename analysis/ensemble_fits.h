@@ -62,6 +62,10 @@ struct ExponentFit {
   std::string note;  // why there is no fit
 };
 
+// alpha from an exponent x of the quantity: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2),
+// R ~ t^alpha (R_t, R_front), dR_front/dt ~ t^(alpha - 1); NaN for any other quantity.
+double alpha_from_exponent(const std::string& quantity, int d, double x);
+
 struct EnsembleFits {
   double alpha_theory = 0;
   std::vector<ExponentFit> exponents;

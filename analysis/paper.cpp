@@ -88,6 +88,30 @@ std::vector<Comparison> case_comparisons(const std::string& case_name, const Ens
     c.note = e.note.empty() ? window_note(e) : e.note;
     out.push_back(c);
   }
+  // Issue 33: E_t and R_t give alpha a few % above 1/3 in 2D where N_t gives 1/3. A plateau
+  // exponent that is a finite-time correction moves towards the theory when the local slope is
+  // fitted as b + k t^-omega; one that is not stays. Not counted: the correction's form is an
+  // assumption, and omega is free.
+  for (const auto& e : f.exponents) {
+    if (e.quantity != "N_t" && e.quantity != "E_t" && e.quantity != "R_t") continue;
+    if ((elastic && e.quantity == "E_t") || !e.corrected.found) continue;
+    const CorrectedExponent& k = e.corrected;
+    Comparison c = base("alpha from " + e.quantity + ", with a correction to scaling");
+    c.counted = false;
+    c.relation = "inside";
+    c.figure = slope_figure;
+    c.measured = alpha_from_exponent(e.quantity, p.dim, k.b);
+    c.ci_lo = alpha_from_exponent(e.quantity, p.dim, k.ci_lo);
+    c.ci_hi = alpha_from_exponent(e.quantity, p.dim, k.ci_hi);
+    c.uncertainty = 0.5 * (c.ci_hi - c.ci_lo);
+    c.theory = f.alpha_theory;
+    c.source = e.theory_source;
+    c.note = "local slope fitted as b + k t^-omega over [" + fmt(k.window.t_lo) + ", " +
+             fmt(k.window.t_hi) + "]: b = " + fmt(k.b) + ", omega = " + fmt(k.omega, 2) +
+             (k.note.empty() ? "" : " (" + k.note + ")") + "; the plateau's alpha " + fmt(e.alpha) +
+             "; 95% interval over the resampled slopes";
+    out.push_back(c);
+  }
   {
     Comparison c = base("v_rms^2 = 2E/N (identity)");
     c.measured = f.speed_identity_error;
@@ -505,6 +529,21 @@ std::string definitions_markdown() {
        "is reported as that identity and not as an estimate of alpha. The front speed is "
        "dR_front/dt (central differences of each realisation's front radius), compared with "
        "alpha - 1.\n"
+       "- The offset of E_t and R_t from alpha = 1/3 in 2D (issue 33), not resolved: their "
+       "plateau exponents give alpha 0.339-0.346 (E_t) and 0.339-0.357 (R_t) over r = 0.1-0.9 "
+       "where N_t gives 0.333-0.337 for r <= 0.5 (--quick; issue 33's runs at delta = 1e-6: "
+       "0.338-0.345 and 0.341). The "
+       "sensitivity table's rows 'alpha from X, with a correction to scaling' (not counted) fit "
+       "the local slope over the run's last two decades as b + k t^-omega, omega free on [0.1, "
+       "2]. Measured in --quick (2D r < 1, 12-16 realisations to t = 1e5): omega runs to an edge "
+       "of its grid in most cases (0.1, where k t^-omega is nearly a constant and b is "
+       "extrapolated far off, or 2), so the runs do not fix the correction's exponent; where "
+       "omega is inside (r = 0.1, E_t: omega = 1.5) the corrected exponent stays off the "
+       "theory (b = -0.637 [-0.639, -0.589], alpha 0.341) and R_t's (0.335 [0.332, 0.349], "
+       "omega at 2) cannot tell. So the offset is neither shown to be a finite-time correction "
+       "nor excluded as one: that needs local slopes a decade or more longer than 1e5 at a "
+       "cutoff whose t_c2 stays beyond them (t_c2 ~ 8e6 at 1e-5), in a box ~2.2 times wider "
+       "(R ~ t^(1/3); 5 times the discs).\n"
        "- Front radius R_front: in shells of fixed width 2 (diameters) around the active "
        "particles' centre of mass, going outward from the densest shell, where the active "
        "number density first falls below half the ambient density n (linear between shell "

@@ -3,6 +3,7 @@
 // in one place: what is measured, how it is defined, the paper's or theory's value, the
 // tolerance and the rule by which the two agree. The command only runs ensembles and draws.
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -14,6 +15,13 @@
 #include "analysis/realisation.h"
 
 namespace gs {
+
+// Fig. 1 of the paper, in its time unit 1/(v0 n^(1/d)): the active particles of r = 0.1 at four
+// times overlaid (a) and of r = 1 at one time (b), in a box of 2.5e5 discs (n = 0.25: side 1000,
+// the kick at its centre, (500, 500) in the caption).
+inline constexpr double kFig1aPaperTimes[] = {5000, 10000, 20000, 50000};
+inline constexpr double kFig1bPaperTime = 25000;
+inline constexpr std::int64_t kFig1Particles = 250000;
 
 // One entry of the report's table and of summary.json "comparisons".
 struct Comparison {

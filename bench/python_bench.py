@@ -9,7 +9,9 @@
 2. snapshot() of --big spheres (3D) into numpy, all and active only.
 3. render of the 2.5e5 discs (all drawn, --show-inactive) from Python against `grainshock render`
    of the same snapshot file: the command's whole run (read, GL context, draw, PNG) and Python's
-   read + render + save, and render() alone once the GL context exists.
+   read + render + save; and the drawing alone: CPU per render() call once the GL context exists,
+   against the command's drawing of the same kind of scene (`grainshock bench render/discs_2.5e5`:
+   2.5e5 discs of a 2D kick, whole box, inactive shown, 1920x1080), CPU time of all threads.
 Medians of --repeat runs; nothing here is a test.
 """
 import argparse
@@ -88,9 +90,20 @@ def main():
     whole = median_time(lambda: gs.render(gs.read(snap_file), show_inactive=True,
                                           framing="box").save(tmp / "py.png"), a.repeat)
     alone = median_time(lambda: gs.render(snap, show_inactive=True, framing="box"), a.repeat)
+    calls = 20
+    c0 = time.process_time()
+    for _ in range(calls):
+        gs.render(snap, show_inactive=True, framing="box")
+    py_cpu = (time.process_time() - c0) / calls
+    subprocess.run([a.binary, "bench", "render/discs_2.5e5", "--json", str(tmp / "bench.json")],
+                   check=True, stdout=subprocess.DEVNULL)
+    figures = json.loads((tmp / "bench.json").read_text())
+    cli_cpu = next(f["value"] for f in figures if f["figure"] == "cpu_ms_per_frame") / 1e3
     print(f"render of {len(snap)} discs at 1920x1080: command {cli * 1e3:.0f} ms (whole process), "
           f"python read+render+save {whole * 1e3:.0f} ms ({100 * (whole / cli - 1):+.1f}%), "
-          f"render() alone {alone * 1e3:.0f} ms")
+          f"render() alone {alone * 1e3:.0f} ms wall; drawing CPU per frame: python "
+          f"{py_cpu * 1e3:.1f} ms, command (bench render/discs_2.5e5) {cli_cpu * 1e3:.1f} ms, "
+          f"{100 * (py_cpu / cli_cpu - 1):+.1f}%")
     subprocess.run(["rm", "-rf", str(tmp)])
 
 

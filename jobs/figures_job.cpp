@@ -1,5 +1,7 @@
 #include "jobs/figures_job.h"
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -23,72 +25,209 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// A sample of realisations of every case, run `threads` at a time as the real run would,
-// extrapolated to the plan's realisation counts; from wall time and, beside it, from the
-// process's CPU time, which another program on the machine changes least (loaded machines).
+// Wall and CPU seconds; CPU counts every thread of this process and the children it waited for
+// (gnuplot), so that a stage's CPU time is what a quiet machine would spend on it.
+struct Cost {
+  double wall = 0, cpu = 0;
+};
+
+double cpu_seconds() {
+  double s = 0;
+  for (int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage u{};
+    getrusage(who, &u);
+    s += double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  }
+  return s;
+}
+
+class Meter {
+ public:
+  Cost read() const { return {seconds_since(t0_), cpu_seconds() - c0_}; }
+
+ private:
+  Clock::time_point t0_ = Clock::now();
+  double c0_ = cpu_seconds();
+};
+
+// What one pass over a plan cost, stage by stage, for --estimate.
+struct PassCosts {
+  std::vector<Cost> runs, fits;  // per case: its realisations; its fits and ensemble folder
+  Cost crossovers;               // phi1 and phi2 readings (resampling realisations)
+  Cost figures;                  // Fig. 1's two realisations, the plots, summary and report
+};
+
+// The job: every case of the plan, then crossovers, comparisons, figures, summary.json and
+// report.md into `dir`. The estimate runs the same pass on a sampled plan.
+FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir,
+                       PassCosts* costs) {
+  const auto t0 = Clock::now();
+  std::vector<CaseResult> results;
+  std::uint64_t total = 0, done_before = 0;
+  for (const auto& c : plan.cases) total += c.spec.realisations;
+  const auto progress = open_progress(o.progress);
+  std::vector<Comparison> cmp;
+  for (const auto& c : plan.cases) {
+    RunnerOptions ro;
+    ro.threads = o.threads;
+    ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
+      progress->update(double(done_before + done) / double(total),
+                       c.name + ": " + std::to_string(done) + " of " +
+                           std::to_string(c.spec.realisations) + " realisations");
+    };
+    const Meter run_meter;
+    RunnerResult r = run_ensemble(c.spec, ro);
+    if (r.interrupted)
+      throw UserError("interrupted; the ensembles finished so far are in " + dir.string());
+    const Cost run_cost = run_meter.read();
+    const Meter fit_meter;
+    done_before += c.spec.realisations;
+    const auto edir = dir / "ensembles" / c.name;
+    fs::create_directories(edir);
+    CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
+    cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
+    if (!c.delta_scan) {
+      auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
+      if (c.superseded_for_alpha)
+        for (auto& m : more)
+          if (m.quantity.starts_with("alpha from")) {
+            m.counted = false;
+            m.note = "superseded by d3_r1_large (the same physics in a larger box); " + m.note;
+          }
+      cmp.insert(cmp.end(), more.begin(), more.end());
+    }
+    results.push_back(std::move(cr));
+    if (costs) {
+      costs->runs.push_back(run_cost);
+      costs->fits.push_back(fit_meter.read());
+    }
+  }
+  progress->done();
+  const double sim_wall = seconds_since(t0);
+
+  const Meter crossover_meter;
+  const Crossovers x = crossovers_of(results);
+  if (costs) costs->crossovers = crossover_meter.read();
+  const Meter figure_meter;
+  for (const auto& set : x.tc1) cmp.push_back(phi1_comparison(set.d, set.fit, false));
+  for (const auto& set : x.tc1_theory_b) cmp.push_back(phi1_comparison(set.d, set.fit, true));
+  for (const auto& set : x.tc1) cmp.push_back(phi1_elastic_limit_comparison(set.d, set.local));
+  for (const auto& set : x.tc1) {
+    cmp.push_back(phi1_energy_comparison(set.d, set.energy, std::nan("")));
+    for (double level : Phi1Options{}.levels)
+      cmp.push_back(phi1_energy_comparison(set.d, set.energy, level));
+  }
+  cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
+  const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
+  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, plan.fig1};
+  write_figures_summary(dir, run, results, cmp, problems);
+  write_figures_report(dir, run, results, x, cmp, problems);
+  if (costs) costs->figures = figure_meter.read();
+  return {dir, run.wall, problems};
+}
+
+// --estimate: the whole job with `sample` realisations per case, in a scratch folder removed
+// after, each stage timed: a case's realisations scaled by M / sample (run `threads` at a time:
+// ceil(M / threads) rounds), the rest as measured. The fits and the phi1/phi2 readings cost
+// about the same for 2 realisations as for 16: their resampling works on the time grid (200
+// draws of a plateau search), and summing a draw's realisations is cheap. Measured (CPU-s,
+// 2 threads, sample 2): --tiny 17.2 estimated, 16.9 run; --quick 250 estimated, 242 run; scaling
+// the fits by M / sample too gave 22.5 and 324. From CPU time, which another program on the
+// machine changes least, that is the wall time on a quiet machine with `threads` cores; from
+// wall time, on this machine as loaded now.
 void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir) {
+  FiguresPlan sampled = plan;
+  for (auto& c : sampled.cases)
+    c.spec.realisations = std::min<std::uint64_t>(c.spec.realisations, std::uint64_t(o.sample));
+  const fs::path scratch = dir / "estimate_sample";
+  fs::create_directories(scratch);
+  PassCosts costs;
+  FiguresOptions so = o;
+  so.progress = {};
+  run_pass(so, sampled, scratch, &costs);
+  fs::remove_all(scratch);
+
   Json j;
   j["mode"] = to_string(plan.mode);
   j["threads"] = o.threads;
   j["sample_per_case"] = o.sample;
   Json& cases = j["cases"] = Json::array();
   std::ostringstream table;
-  table << "| case | N | t_max | M | sample wall (s) | s per realisation per thread | estimated "
-           "wall (s) | CPU s per realisation | estimated from CPU (s) |\n"
-           "|---|---|---|---|---|---|---|---|---|\n";
-  double total = 0, total_cpu = 0;
-  for (const auto& c : plan.cases) {
-    EnsembleSpec s = c.spec;
-    s.realisations = static_cast<std::uint64_t>(o.sample);
-    RunnerOptions ro;
-    ro.threads = o.threads;
-    const auto t0 = Clock::now();
-    const std::clock_t c0 = std::clock();  // process CPU time, every thread
-    const RunnerResult r = run_ensemble(s, ro);
-    const double wall = seconds_since(t0);
-    const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC / o.sample;
-    if (r.interrupted) throw UserError("interrupted");
-    // Each thread ran sample/threads realisations in `wall`.
-    const double per = wall * std::min(o.threads, o.sample) / o.sample;
-    const double est = per * double(c.spec.realisations) / o.threads;
-    const double est_cpu = cpu * double(c.spec.realisations) / o.threads;
-    total += est;
-    total_cpu += est_cpu;
+  table << "| stage | N | t_max | M | sample wall (s) | sample CPU (s) | CPU s per realisation | "
+           "estimated CPU (s) | estimated wall, quiet (s) | estimated wall, this load (s) |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n";
+  double total = 0, total_cpu = 0, total_quiet = 0;
+  auto row = [&](const std::string& stage, const std::string& n, const std::string& t_max,
+                 const std::string& m, const Cost& sample, const std::string& per, double cpu,
+                 double quiet, double wall) {
+    table << "| " << stage << " | " << n << " | " << t_max << " | " << m << " | "
+          << figure_number(sample.wall) << " | " << figure_number(sample.cpu) << " | " << per
+          << " | " << figure_number(cpu) << " | " << figure_number(quiet) << " | "
+          << figure_number(wall) << " |\n";
+    total += wall;
+    total_cpu += cpu;
+    total_quiet += quiet;
+  };
+  const double threads = o.threads;
+  for (std::size_t k = 0; k < plan.cases.size(); ++k) {
+    const FigureCase& c = plan.cases[k];
+    const double m = double(c.spec.realisations), s = double(sampled.cases[k].spec.realisations);
+    const Cost run = costs.runs[k], fit = costs.fits[k];
+    const double per = run.cpu / s;
+    // Realisations run `threads` at a time: the last round may leave threads idle.
+    const double rounds = std::ceil(m / threads);
+    const double quiet_run = per * rounds;
+    const double wall_run = run.wall / std::ceil(s / threads) * rounds;
     cases.push_back({{"case", c.name},
                      {"particles", c.spec.physics.particles},
                      {"t_max", c.spec.physics.t_max},
                      {"realisations", c.spec.realisations},
-                     {"sample_wall_seconds", wall},
-                     {"estimated_wall_seconds", est},
-                     {"cpu_seconds_per_realisation", cpu},
-                     {"estimated_wall_seconds_from_cpu", est_cpu}});
-    table << "| " << c.name << " | " << c.spec.physics.particles << " | "
-          << figure_number(c.spec.physics.t_max) << " | " << c.spec.realisations << " | "
-          << figure_number(wall) << " | " << figure_number(per) << " | " << figure_number(est)
-          << " | " << figure_number(cpu) << " | " << figure_number(est_cpu) << " |\n";
-    if (!o.quiet)
-      std::fprintf(stderr,
-                   "grainshock: estimate %s: %d realisations in %.3g s -> %.4g s for %llu\n",
-                   c.name.c_str(), o.sample, wall, est,
-                   static_cast<unsigned long long>(c.spec.realisations));
+                     {"sample_wall_seconds", run.wall},
+                     {"cpu_seconds_per_realisation", per},
+                     {"fit_cpu_seconds_of_sample", fit.cpu},
+                     {"estimated_cpu_seconds", per * m + fit.cpu},
+                     {"estimated_wall_seconds", wall_run + fit.wall},
+                     {"estimated_wall_seconds_from_cpu", quiet_run + fit.cpu}});
+    row(c.name + " (runs + fits)", std::to_string(c.spec.physics.particles),
+        figure_number(c.spec.physics.t_max), std::to_string(c.spec.realisations),
+        {run.wall + fit.wall, run.cpu + fit.cpu}, figure_number(per), per * m + fit.cpu,
+        quiet_run + fit.cpu, wall_run + fit.wall);
   }
-  j["estimated_wall_seconds_from_cpu"] = total_cpu;
+  row("phi1 and phi2 readings", "", "", "", costs.crossovers, "", costs.crossovers.cpu,
+      costs.crossovers.cpu, costs.crossovers.wall);
+  row("Fig. 1 (one realisation each, " + std::to_string(plan.fig1.a.particles) +
+          " discs), plots, report",
+      "", "", "", costs.figures, "", costs.figures.cpu, costs.figures.cpu, costs.figures.wall);
+  // Serial stages, as measured.
+  j["readings_cpu_seconds"] = costs.crossovers.cpu;
+  j["figures_cpu_seconds"] = costs.figures.cpu;
+  j["estimated_cpu_seconds"] = total_cpu;
+  j["estimated_wall_seconds_from_cpu"] = total_quiet;
   j["estimated_wall_seconds"] = total;
   write_file_atomic(dir / "estimate.json", json_text(j));
   std::ostringstream md;
-  md << "# Wall-time estimate of `grainshock figures --" << to_string(plan.mode)
+  md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
      << (o.long_3d ? " --long" : "") << "`\n\n"
-     << "From " << o.sample << " realisations per case run on " << o.threads
-     << " threads, scaled to the plan's realisation counts (the renderer and plots add "
-        "seconds).\n\n"
-     << table.str() << "\n**Total: " << figure_number(total) << " s ("
-     << figure_number(total / 60, 3) << " min); from CPU time " << figure_number(total_cpu)
-     << " s (" << figure_number(total_cpu / 60, 3) << " min).**\n";
+     << "The whole job run with " << o.sample << " realisations per case on " << o.threads
+     << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
+     << " in rounds of " << o.threads
+     << " (ceil(M / threads) rounds); its fits, the phi1 and phi2 readings, Fig. 1 and the "
+        "plots as measured (the fits and readings resample on the time grid and cost about the "
+        "same for 2 realisations as for 16: --quick estimated 250 CPU-s, ran 242). CPU time "
+        "counts every thread and gnuplot. "
+        "'Quiet': the wall time on an otherwise idle machine with "
+     << o.threads << " cores, from CPU time; 'this load': from the wall time measured now.\n\n"
+     << table.str() << "\n**Total: " << figure_number(total_cpu) << " CPU-s; wall on a quiet "
+     << o.threads << "-core machine " << figure_number(total_quiet) << " s ("
+     << figure_number(total_quiet / 60, 3) << " min); at this load " << figure_number(total)
+     << " s (" << figure_number(total / 60, 3) << " min).**\n";
   write_file_atomic(dir / "estimate.md", md.str());
   if (!o.quiet)
     std::fprintf(stderr,
-                 "grainshock: estimated wall time %.4g s (%.3g min), from CPU time %.4g s\n", total,
-                 total / 60, total_cpu);
+                 "grainshock: estimated %.4g CPU-s: %.4g s (%.3g min) wall on a quiet %d-core "
+                 "machine, %.4g s at this load\n",
+                 total_cpu, total_quiet, total_quiet / 60, o.threads, total);
 }
 
 }  // namespace
@@ -108,59 +247,9 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     return out;
   }
 
-  std::vector<CaseResult> results;
-  std::uint64_t total = 0, done_before = 0;
-  for (const auto& c : plan.cases) total += c.spec.realisations;
-  const auto progress = open_progress(o.progress);
-  std::vector<Comparison> cmp;
-  for (const auto& c : plan.cases) {
-    RunnerOptions ro;
-    ro.threads = o.threads;
-    ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
-      progress->update(double(done_before + done) / double(total),
-                       c.name + ": " + std::to_string(done) + " of " +
-                           std::to_string(c.spec.realisations) + " realisations");
-    };
-    const auto tc = Clock::now();
-    RunnerResult r = run_ensemble(c.spec, ro);
-    if (r.interrupted)
-      throw UserError("interrupted; the ensembles finished so far are in " + dir.string());
-    done_before += c.spec.realisations;
-    const auto edir = dir / "ensembles" / c.name;
-    fs::create_directories(edir);
-    CaseResult cr{&c, std::move(r.sums), {}, seconds_since(tc)};
-    cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
-    if (!c.delta_scan) {
-      auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
-      if (c.superseded_for_alpha)
-        for (auto& m : more)
-          if (m.quantity.starts_with("alpha from")) {
-            m.counted = false;
-            m.note = "superseded by d3_r1_large (the same physics in a larger box); " + m.note;
-          }
-      cmp.insert(cmp.end(), more.begin(), more.end());
-    }
-    results.push_back(std::move(cr));
-  }
-  progress->done();
-  const double sim_wall = seconds_since(t0);
-
-  const Crossovers x = crossovers_of(results);
-  for (const auto& set : x.tc1) cmp.push_back(phi1_comparison(set.d, set.fit, false));
-  for (const auto& set : x.tc1_theory_b) cmp.push_back(phi1_comparison(set.d, set.fit, true));
-  for (const auto& set : x.tc1) cmp.push_back(phi1_elastic_limit_comparison(set.d, set.local));
-  for (const auto& set : x.tc1) {
-    cmp.push_back(phi1_energy_comparison(set.d, set.energy, std::nan("")));
-    for (double level : Phi1Options{}.levels)
-      cmp.push_back(phi1_energy_comparison(set.d, set.energy, level));
-  }
-  cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
-  const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
-  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall};
-  write_figures_summary(dir, run, results, cmp, problems);
-  write_figures_report(dir, run, results, x, cmp, problems);
-  out.wall = run.wall;
-  out.problems = problems;
+  const FiguresResult pass = run_pass(o, plan, dir, nullptr);
+  out.problems = pass.problems;
+  out.wall = pass.wall;
   return out;
 }
 

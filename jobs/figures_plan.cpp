@@ -1,7 +1,9 @@
 #include "jobs/figures_plan.h"
 
 #include <cstdio>
+#include <iterator>
 
+#include "analysis/paper.h"
 #include "sim/format.h"
 
 namespace gs::jobs {
@@ -41,8 +43,11 @@ struct RunSize {
 //
 // --full has the paper's sizes (2.5e5 discs, 2e6 spheres; 4e6 for 3D r = 0.7-0.85) but not its
 // ~100 realisations per case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D
-// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. Measured on a quiet machine: 851 s wall
-// (1553 CPU-s), of which 3D r = 0.7, 0.8, 0.85 take 63, 176, 159 s; --estimate: 823 s.
+// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. --estimate of this plan (issue 33, sample 2,
+// measured at load ~7): 2641 CPU-s, 22.6 min on a quiet 2-core machine, of which 3D r = 0.7,
+// 0.8, 0.85 and the 4e6-sphere elastic blast 159, 438, 372 and 166 CPU-s, 2D 930; realisations
+// 2-5 of 3D r = 0.85 cost 13% more than the sample's 0-1. The last --full run (before 2D's
+// cutoff went to 1e-5 and r = 0.95 was added) took 2931 CPU-s, 44 min wall on a shared machine.
 std::vector<RunSize> sizes_of(FiguresMode m, int d) {
   switch (m) {
     case FiguresMode::Tiny:
@@ -238,11 +243,26 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
       add(std::string("d2_r0.1_delta").append(format_number(delta)), e, CaseRole::DeltaScan);
     }
   }
-  const std::vector<RunSize> plane = sizes_of(mode, 2);
-  const double T = plane.front().t_max;  // r = 0.1
-  // The paper's Fig. 1(a) times 5000, 10000, 20000, 50000 as fractions of the last.
-  plan.fig1a_times = {T / 10, T / 5, T * 2 / 5, T};
-  plan.fig1b_time = plane.back().t_max;  // r = 1
+  // Fig. 1 from the 2D r = 0.1 and r = 1 cases' physics (cutoff included).
+  FiguresPlan::Fig1& f = plan.fig1;
+  f.a = find_case(plan, 2, 0.1)->spec.physics;
+  f.b = find_case(plan, 2, 1.0)->spec.physics;
+  f.a.realisation = f.b.realisation = 0;
+  f.paper_times = mode != FiguresMode::Tiny;
+  if (f.paper_times) {
+    // The paper's box. Measured at r = 1, t_paper = 25000: the outermost active disc at 433 of
+    // L/2 = 500 from the centre of mass, none wrapped, 9 CPU-s; r = 0.1 spreads far less.
+    f.a.particles = f.b.particles = kFig1Particles;
+    for (double t : kFig1aPaperTimes) f.a_times.push_back(t / f.a.paper_time(1.0));
+    f.b_time = kFig1bPaperTime / f.b.paper_time(1.0);
+  } else {
+    // The paper's times in ratio, ending at the tiny run's t_max (its box holds no more).
+    const double T = f.a.t_max, last = std::end(kFig1aPaperTimes)[-1];
+    for (double t : kFig1aPaperTimes) f.a_times.push_back(T * t / last);
+    f.b_time = f.b.t_max;
+  }
+  f.a.t_max = f.a_times.back();
+  f.b.t_max = f.b_time;
   return plan;
 }
 

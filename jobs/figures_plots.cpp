@@ -38,41 +38,23 @@ std::string no_data_plot(const std::string& csv, const std::string& why) {
          "' at graph 0.5, 0.5 center\nunset key\nplot [0:1][0:1] -1 notitle\n";
 }
 
-std::string render_fig1(const FiguresPlan& plan, const fs::path& dir) {
-  const FigureCase* a = find_case(plan, 2, 0.1);
-  const FigureCase* b = find_case(plan, 2, 1.0);
-  GS_CHECK(a && b);
+// Fig. 1 in diameters, the paper's length unit: a scale bar says how many (the framing follows
+// the active particles, so the picture's width alone says nothing). Each snapshot's label gives
+// t and t_paper.
+std::string render_fig1(const Fig1Snapshots& s, const fs::path& dir) {
   try {
     render::Renderer renderer;
     render::View view;
     view.width = 1000;
     view.height = 1000;
     render::Style style;
-    {
-      PhysicsConfig c = a->spec.physics;
-      c.realisation = 0;
-      auto sim = make_simulation(c);
-      std::vector<Snapshot> snaps;
-      for (double t : plan.fig1a_times) {
-        sim->run_until(t);
-        snaps.push_back(sim->snapshot());
-      }
-      std::vector<const Snapshot*> ptrs;
-      for (const auto& s : snaps) ptrs.push_back(&s);
-      const auto img = renderer.render(ptrs, style, view);
-      render::write_png((dir / "fig1a_overlay_r0.1.png").string(), img,
-                        render::png_text(snaps.back().info, snaps.back().size()));
-    }
-    {
-      PhysicsConfig c = b->spec.physics;
-      c.realisation = 0;
-      auto sim = make_simulation(c);
-      sim->run_until(plan.fig1b_time);
-      const Snapshot s = sim->snapshot();
-      const auto img = renderer.render(s, style, view);
-      render::write_png((dir / "fig1b_elastic_r1.png").string(), img,
-                        render::png_text(s.info, s.size()));
-    }
+    style.scale_bar = true;
+    std::vector<const Snapshot*> ptrs;
+    for (const auto& x : s.a) ptrs.push_back(&x);
+    render::write_png((dir / "fig1a_overlay_r0.1.png").string(), renderer.render(ptrs, style, view),
+                      render::png_text(s.a.back().info, s.a.back().size()));
+    render::write_png((dir / "fig1b_elastic_r1.png").string(), renderer.render(s.b, style, view),
+                      render::png_text(s.b.info, s.b.size()));
   } catch (const UserError& e) {
     return std::string("Fig. 1 not rendered: ") + e.what();
   }
@@ -198,6 +180,27 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
   return out.plot("fig3_active_energy.gp", gp);
 }
 
+// The x-range over which some curve is above `floor` times the largest value of any, padded: the
+// scaled distributions' bins reach 5 theory scales (analysis/realisation.h), most of them empty or
+// a few particles' noise, which squeezed the collapse into a corner of the panel.
+std::string filled_xrange(const Table& t, const char* x, const char* f, double floor) {
+  double peak = 0;
+  for (double v : t.column(f))
+    if (std::isfinite(v)) peak = std::max(peak, v);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < t.rows(); ++i)
+    if (std::isfinite(t.column(f)[i]) && t.column(f)[i] >= floor * peak && peak > 0) {
+      lo = std::min(lo, t.column(x)[i]);
+      hi = std::max(hi, t.column(x)[i]);
+    }
+  if (!(lo < hi)) return "set xrange [*:*]\n";
+  const double pad = 0.05 * (hi - lo);
+  return "set xrange [" + format_double(std::max(0.0, lo - pad)) + ":" + format_double(hi + pad) +
+         "]\n";
+}
+
+// Figs. 4 and 5 in simulation units throughout (R in diameters, t in d / v_0, v in v_0), as the
+// ensemble's distributions_mean.csv holds them; the key gives each time in both units.
 std::string fig_collapse(const CaseResult& c, const Out& out, const std::string& base, int fig) {
   const Table d = read_csv(out.dir / "ensembles" / c.plan->name / "distributions_mean.csv");
   Table t;
@@ -213,7 +216,8 @@ std::string fig_collapse(const CaseResult& c, const Out& out, const std::string&
   std::string pr, pv;
   for (double ts : c.plan->spec.snapshot_times) {
     const std::string sel = "($1==" + format_number(ts) + " ? ";
-    const std::string title = "'t = " + format_number(std::round(p.paper_time(ts))) + "'";
+    const std::string title = "'t = " + figure_number(ts, 6) +
+                              " (t_{paper} = " + format_number(std::round(p.paper_time(ts))) + ")'";
     pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
           sel + "$3 : 1/0):4 title " + title;
     pv += std::string(pv.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
@@ -224,12 +228,19 @@ std::string fig_collapse(const CaseResult& c, const Out& out, const std::string&
   std::string gp = gnuplot_preamble(base, 1400, 600);
   gp += "set multiplot layout 1,2 title 'Fig. " + std::to_string(fig) + ": scaling collapse in " +
         std::to_string(p.dim) + "D, r = " + rtext(p.restitution) + ", α = " + as +
-        " (times in paper units)'\n";
+        "; simulation units: R in diameters, t in d/v_0, v in v_0'\n";
+  // (a): room above the peak for the key (linear y).
   gp += "set title '(a) t^{α} P(R,t) against R t^{-α}'\nset xlabel 'R t^{-" + as +
-        "}'\nset ylabel 't^{" + as + "} P(R,t)'\nset key top left\n" + pr + "\n";
+        "} (simulation units)'\nset ylabel 't^{" + as +
+        "} P(R,t)'\nset key top left\nset offsets 0, 0, graph 0.3, 0\n" +
+        filled_xrange(t, "x_R", "f1", 1e-2) + pr + "\n";
+  // Log y: the exponential tail down to 1e-4 of the peak, below which a bin holds a few
+  // particles of one realisation; the key bottom left, below the rise (the peak is at the top).
   gp += "set title '(b) t^{α-1} P(v,t) against v t^{1-α}'\nset xlabel 'v t^{" + bs +
-        "}'\nset ylabel 't^{-" + bs +
-        "} P(v,t)'\nset logscale y\nset format y '10^{%L}'\nset key top right\n" + pv + "\n";
+        "} (simulation units)'\nset ylabel 't^{-" + bs +
+        "} P(v,t)'\nset offsets 0, 0, 0, 0\nset logscale y\nset format y '10^{%L}'\n"
+        "set key bottom left\n" +
+        filled_xrange(t, "x_v", "f2", 1e-4) + pv + "\n";
   gp += "unset multiplot\n";
   return out.plot(base + ".gp", gp);
 }
@@ -441,6 +452,19 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
 
 }  // namespace
 
+Fig1Snapshots run_fig1(const FiguresPlan::Fig1& f) {
+  Fig1Snapshots out;
+  auto sim = make_simulation(f.a);
+  for (double t : f.a_times) {
+    sim->run_until(t);
+    out.a.push_back(sim->snapshot());
+  }
+  sim = make_simulation(f.b);
+  sim->run_until(f.b_time);
+  out.b = sim->snapshot();
+  return out;
+}
+
 std::string figure_number(double x, int digits) {
   if (!std::isfinite(x)) return "n/a";
   char buf[64];
@@ -500,7 +524,7 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
   auto check = [&](std::string e) {
     if (!e.empty()) problems.push_back(std::move(e));
   };
-  check(render_fig1(plan, dir));
+  check(render_fig1(run_fig1(plan.fig1), dir));
   check(fig2(results, out));
   check(fig3(results, out));
   for (const auto& c : results) {

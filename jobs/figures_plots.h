@@ -10,6 +10,7 @@
 #include "analysis/ensemble_output.h"
 #include "analysis/paper.h"
 #include "jobs/figures_plan.h"
+#include "sim/snapshot.h"
 
 namespace gs::jobs {
 
@@ -44,6 +45,13 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results);
 
 // "fig8_local_slopes_<case>.png": the figure an exponent of the case was read from.
 std::string slope_figure_of(const FigureCase& c);
+
+// Fig. 1's snapshots: the r = 0.1 realisation at each of the plan's times, the r = 1 one at its.
+struct Fig1Snapshots {
+  std::vector<Snapshot> a;
+  Snapshot b;
+};
+Fig1Snapshots run_fig1(const FiguresPlan::Fig1& f);
 
 // Writes every figure into `dir` in `formats` (png, svg, pdf); returns what could not be drawn.
 std::vector<std::string> write_figures(const FiguresPlan& plan,

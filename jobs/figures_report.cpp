@@ -128,6 +128,36 @@ std::string plateau_markdown(const std::vector<CaseResult>& results) {
   return md.str();
 }
 
+// What Fig. 1 shows: its times in both units, its box, and the scale bar's unit.
+std::string fig1_markdown(const FiguresPlan::Fig1& f) {
+  auto times = [](const PhysicsConfig& p, const std::vector<double>& ts) {
+    std::string sim, paper;
+    for (double t : ts) {
+      sim += (sim.empty() ? "" : ", ") + figure_number(t, 6);
+      paper += (paper.empty() ? "" : ", ") + figure_number(p.paper_time(t), 6);
+    }
+    return "t = " + sim + " (t_paper = " + paper + ")";
+  };
+  std::string paper_times;
+  for (double t : kFig1aPaperTimes)
+    paper_times += (paper_times.empty() ? "" : ", ") + figure_number(t, 6);
+  std::ostringstream md;
+  md << "- fig1a_overlay_r0.1.png: the active particles of one 2D r = 0.1 realisation of "
+     << f.a.particles << " discs (box side " << figure_number(f.a.box()) << ") at "
+     << times(f.a, f.a_times) << ", overlaid (Fig. 1a); fig1b_elastic_r1.png: 2D r = 1, "
+     << f.b.particles << " discs, at " << times(f.b, {f.b_time}) << " (Fig. 1b). "
+     << (f.paper_times
+             ? "These are the paper's times and box. "
+             : "This mode's box is smaller than the paper's (" + std::to_string(kFig1Particles) +
+                   " discs), so its times are the "
+                   "paper's (t_paper = " +
+                   paper_times + " and " + figure_number(kFig1bPaperTime, 6) +
+                   ") scaled to its r = 0.1 run. ")
+     << "The scale bar is in particle diameters, the paper's length unit; each colour's label "
+        "gives t (simulation units) and t_paper.\n";
+  return md.str();
+}
+
 }  // namespace
 
 void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
@@ -215,9 +245,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";
   md << "\n## Files\n\n"
-        "- fig1a_overlay_r0.1.png: active particles of one 2D r = 0.1 realisation at four times "
-        "(Fig. 1a); fig1b_elastic_r1.png: 2D r = 1 (Fig. 1b).\n"
-        "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
+     << fig1_markdown(run.fig1)
+     << "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
         "- fig3_active_energy: <N_t>, <E_t> in 2D and 3D with the theory's slopes (Fig. 3).\n"
         "- fig4_collapse_2d, fig5_collapse_3d: scaled P(R,t), P(v,t) for r = 0.1 (Figs. 4, 5).\n"
         "- fig6_crossover: t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits, by "
@@ -229,7 +258,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
         "beside it. summary.json: every comparison as {quantity, d, r, measured, uncertainty, "
         "theory, agrees}.\n"
-        "Restyle a plot by editing its .gp script and running `gnuplot figN.gp` in this folder.\n";
+        "Restyle a plot by editing its .gp script and running gnuplot on it in this folder "
+        "(`gnuplot fig2_anisotropy.gp`).\n";
   write_file_atomic(dir / "report.md", md.str());
 }
 

@@ -17,6 +17,7 @@ struct FiguresRun {
   std::uint64_t seed = 1;
   int threads = 1;
   double wall = 0, simulation_wall = 0;  // seconds: all of it, and the ensembles alone
+  FiguresPlan::Fig1 fig1;                // what Fig. 1 shows, for the list of files
 };
 
 void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,

@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <fstream>
 #include <future>
+#include <iterator>
 #include <optional>
 #include <sstream>
 
 #include "analysis/json.h"
+#include "analysis/paper.h"
 #include "io/atomic_file.h"
 #include "io/output_dir.h"
 #include "io/snapshot_file.h"
@@ -27,10 +29,6 @@ namespace gs::jobs {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Fig. 1 of the paper, in its time unit 1/(v0 n^(1/d)): r = 0.1 at t = 5000, 10000, 20000 and
-// 50000 (a), and r = 1 at t = 25000 (b).
-constexpr double kFig1Times[] = {5000, 10000, 20000, 50000};
 
 // What a run writes; --force clears these (and nothing else) before a new run.
 constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary.json",
@@ -199,9 +197,9 @@ bool finished_run(const fs::path& dir) {
 
 void use_fig1_job(RunOptions& o) {
   const double to_sim = 1 / o.plan.physics.paper_time(1.0);
-  o.plan.physics.t_max = kFig1Times[3] * to_sim;
+  o.plan.physics.t_max = std::end(kFig1aPaperTimes)[-1] * to_sim;
   o.plan.snapshot_times.clear();
-  for (double t : kFig1Times) o.plan.snapshot_times.push_back(t * to_sim);
+  for (double t : kFig1aPaperTimes) o.plan.snapshot_times.push_back(t * to_sim);
   o.png = o.compare_elastic = o.movie = o.movie_inset = true;
 }
 

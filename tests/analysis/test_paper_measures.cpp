@@ -8,6 +8,7 @@
 
 #include "analysis/band_measures.h"
 #include "analysis/effective_exponent.h"
+#include "analysis/ensemble_fits.h"
 #include "analysis/ensemble_runner.h"
 #include "analysis/paper.h"
 #include "analysis/shock.h"
@@ -41,6 +42,21 @@ std::vector<std::vector<double>> ensemble_of(std::span<const double> t, F f, int
   return c;
 }
 
+TEST(AlphaFromExponent, InvertsEachScalingLaw) {
+  // The theory's exponents of each quantity give the theory's alpha back, in 2D and 3D.
+  for (int d : {2, 3}) {
+    const double a = 1.0 / (d + 1);
+    EXPECT_NEAR(alpha_from_exponent("N_t", d, a * d), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("E_t", d, a * d + 2 * a - 2), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("R_t", d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("R_front", d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent("dR_front/dt", d, a - 1), a, 1e-15);
+  }
+  // E_t of the elastic blast: alpha = 2/(d+2) conserves energy (exponent 0).
+  EXPECT_NEAR(alpha_from_exponent("E_t", 2, 0), 0.5, 1e-15);
+  EXPECT_TRUE(std::isnan(alpha_from_exponent("C_t", 2, 1.5)));  // no alpha of its own
+}
+
 TEST(EffectiveExponent, FindsThePlateauOfACorrectionToScaling) {
   // X = t^a (1 + c / t): local slope a - c / (t + c). The plateau starts where the correction's
   // change across the window falls below what 16 realisations with 1% noise resolve.
@@ -70,7 +86,8 @@ TEST(EffectiveExponent, FindsThePlateauOfACorrectionToScaling) {
 
 TEST(EffectiveExponent, FlatSlopeIsAPlateauOverTheWholeRun) {
   const auto t = log_grid(1, 1e5, 20);
-  const auto x = ensemble_of(t, [](double s) { return std::pow(s, 0.667); }, 20, 11);
+  const auto x = ensemble_of(
+      t, [](double s) { return std::pow(s, 0.667); }, 20, 11);
   const Plateau p = find_plateau(local_slope_band(t, x));
   ASSERT_TRUE(p.found) << p.note;
   EXPECT_EQ(p.window.t_hi, t.back());
@@ -78,7 +95,8 @@ TEST(EffectiveExponent, FlatSlopeIsAPlateauOverTheWholeRun) {
   EXPECT_NEAR(p.exponent, 0.667, 0.003);
   EXPECT_LE(std::fabs(p.drift), 2 * p.drift_error + 1e-3);
   // One exact realisation: no error, and only the floor; a flat slope still passes.
-  const auto exact = ensemble_of(t, [](double s) { return std::pow(s, 0.667); }, 1, 1, 0.0);
+  const auto exact = ensemble_of(
+      t, [](double s) { return std::pow(s, 0.667); }, 1, 1, 0.0);
   EXPECT_TRUE(find_plateau(local_slope_band(t, exact)).found);
 }
 
@@ -113,10 +131,7 @@ TEST(EffectiveExponent, SlopeClimbingAcrossACrossoverGivesAWindowEndingBeforeIt)
   const double tc = 3e4;
   const auto t = log_grid(1, 2e5, 20);
   const auto x = ensemble_of(
-      t,
-      [&](double s) {
-        return std::pow(s, 2.0 / 3.0) * std::pow(1 + (s / tc) * (s / tc), 0.05);
-      },
+      t, [&](double s) { return std::pow(s, 2.0 / 3.0) * std::pow(1 + (s / tc) * (s / tc), 0.05); },
       20, 13, 0.005);
   const SlopeBand band = local_slope_band(t, x);
   const Plateau p = find_plateau(band);
@@ -134,7 +149,8 @@ TEST(EffectiveExponent, SlopeClimbingAcrossACrossoverGivesAWindowEndingBeforeIt)
   EXPECT_FALSE(late.found);
   EXPECT_NE(late.note.find("transient"), std::string::npos) << late.note;
   // A flat slope to the end still passes it.
-  const auto flat = ensemble_of(t, [](double s) { return std::pow(s, 2.0 / 3.0); }, 20, 13, 0.005);
+  const auto flat = ensemble_of(
+      t, [](double s) { return std::pow(s, 2.0 / 3.0); }, 20, 13, 0.005);
   const Plateau whole = find_plateau(local_slope_band(t, flat), asymptotic_plateau());
   ASSERT_TRUE(whole.found) << whole.note;
   EXPECT_NEAR(whole.exponent, 2.0 / 3.0, 0.01);
@@ -151,8 +167,7 @@ TEST(EffectiveExponent, SlopeThatDipsAndRecoversIsNoPlateauAcrossTheDip) {
   };
   const auto t = log_grid(1, 1e6, 20);
   const auto x = ensemble_of(
-      t, [&](double s) { return std::exp(0.7 * std::log(s) + slope_integral(s)); }, 20, 14,
-      0.005);
+      t, [&](double s) { return std::exp(0.7 * std::log(s) + slope_integral(s)); }, 20, 14, 0.005);
   const Plateau p = find_plateau(local_slope_band(t, x));
   ASSERT_TRUE(p.found) << p.note;  // the late, recovered slope
   EXPECT_GT(p.window.t_lo, t0 * 3) << "[" << p.window.t_lo << ", " << p.window.t_hi << "]";
@@ -485,10 +500,9 @@ TEST(CrossoverExponents, DeclaredPhi1IsTheCollapseOfThePairNearestTheLimit) {
     return p;
   };
   const double nan = std::nan("");
-  std::vector<Phi1Reading> readings = {reading("r = 0.7", "r = 0.8", nan, 1.5),
-                                       reading("r = 0.7", "r = 0.8", 0.1, 1.6),
-                                       reading("r = 0.8", "r = 0.9", nan, 2.3),
-                                       reading("r = 0.8", "r = 0.9", 0.1, nan)};
+  std::vector<Phi1Reading> readings = {
+      reading("r = 0.7", "r = 0.8", nan, 1.5), reading("r = 0.7", "r = 0.8", 0.1, 1.6),
+      reading("r = 0.8", "r = 0.9", nan, 2.3), reading("r = 0.8", "r = 0.9", 0.1, nan)};
   const Comparison c = phi1_energy_comparison(2, readings, nan);
   EXPECT_TRUE(c.counted);
   EXPECT_DOUBLE_EQ(c.measured, 2.3);  // the last pair, not the first

@@ -3,9 +3,13 @@
 // are not physics; their values are not tested here.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <regex>
+#include <set>
 
 #include "analysis/json.h"
+#include "analysis/table.h"
 #include "tests/apps/cli_test_util.h"
 
 namespace gs {
@@ -19,6 +23,23 @@ namespace fs = std::filesystem;
 bool is_png(const fs::path& p) {
   const std::string s = read_file(p);
   return s.size() > 1000 && s.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+}
+
+// Every file name the text mentions (a word ending .csv, .png, .json, .gp, .md) exists in `dir`
+// or in a case's folder, <case> standing for d2_r0.1; prints the missing ones.
+bool names_only_existing_files(const std::string& text, const fs::path& dir) {
+  const std::regex name(R"([A-Za-z0-9_<>.-]+\.(csv|png|json|gp|md))");
+  bool ok = true;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), name); it != std::sregex_iterator();
+       ++it) {
+    std::string file = it->str();
+    if (file.starts_with(".")) continue;  // ".gp script": a kind of file, not a name
+    if (const auto c = file.find("<case>"); c != std::string::npos) file.replace(c, 6, "d2_r0.1");
+    if (fs::exists(dir / file) || fs::exists(dir / "ensembles" / "d2_r0.1" / file)) continue;
+    ADD_FAILURE() << "names " << it->str() << ", which is not in " << dir;
+    ok = false;
+  }
+  return ok;
 }
 
 TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
@@ -54,14 +75,27 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
                           "\"theory\"", "\"agrees\"", "\"wall_seconds\"", "\"figure\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q :
-       {"alpha from R_t", "alpha from N_t", "alpha from R_front", "alpha from dR_front/dt",
-        "collision exponent", "v_rms^2 = 2E/N (identity)", "phi1", "phi2",
-        "band packing (typical, cells of 10)", "band number density (typical, cells of 10)",
-        "alpha best collapsing P(R,t)", "alpha best collapsing P(v,t)",
-        "A(t) constant: d ln A / d ln t, last half decade", "band packing (upper, 90% quantile)",
-        "band packing (densest cell, shifted grids)", "band packing (local, 90% quantile)",
-        "band number density (shell peak, no pi/4)", "shell peak density / ambient", "A(t_max)"})
+  for (const char* q : {"alpha from R_t",
+                        "alpha from N_t",
+                        "alpha from R_front",
+                        "alpha from dR_front/dt",
+                        "collision exponent",
+                        "v_rms^2 = 2E/N (identity)",
+                        "phi1",
+                        "phi2",
+                        "band packing (typical, cells of 10)",
+                        "band number density (typical, cells of 10)",
+                        "alpha best collapsing P(R,t)",
+                        "alpha best collapsing P(v,t)",
+                        "A(t) constant: d ln A / d ln t, last half decade",
+                        "band packing (upper, 90% quantile)",
+                        "band packing (densest cell, shifted grids)",
+                        "band packing (local, 90% quantile)",
+                        "band number density (shell peak, no pi/4)",
+                        "shell peak density / ambient",
+                        "A(t_max)",
+                        "alpha from E_t, with a correction to scaling",
+                        "alpha from R_t, with a correction to scaling"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   // One reading per number: the small d3_r1's alpha rows are superseded by d3_r1_large's and
   // not counted; t_c2 is a crossover only where the delta scan puts it inside the run.
@@ -84,12 +118,71 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     }
     EXPECT_EQ(c.at("superseded_for_alpha").get<bool>(), c.at("name") == "d3_r1") << c.dump();
   }
+  // Figs. 4 and 5 in one unit system, said on the axes: the CSV's t_paper is t v_0 n^(1/d)
+  // (n = 0.25), the x labels say simulation units, and the x-range is set from the data.
+  for (const auto& [base, d] :
+       {std::pair{"fig4_collapse_2d", 2}, std::pair{"fig5_collapse_3d", 3}}) {
+    const Table t = read_csv(dir / (std::string(base) + ".csv"));
+    ASSERT_GT(t.rows(), 0u) << base;
+    for (std::size_t i = 0; i < t.rows(); ++i)
+      EXPECT_NEAR(t.column("t_paper")[i], t.column("t")[i] * std::pow(0.25, 1.0 / d),
+                  1e-9 * t.column("t")[i])
+          << base;
+    const std::string gp = read_file(dir / (std::string(base) + ".gp"));
+    EXPECT_NE(gp.find("R t^{-" + std::string(d == 2 ? "1/3" : "1/4") + "} (simulation units)"),
+              std::string::npos)
+        << base;
+    EXPECT_NE(gp.find("} (simulation units)'\nset ylabel 't^{-"), std::string::npos) << base;
+    EXPECT_EQ(gp.find("set xrange [*"), std::string::npos) << base;
+  }
+  // Fig. 2's A(t) on log axes; Fig. 3's 2D and 3D curves share no colour.
+  EXPECT_NE(read_file(dir / "fig2_anisotropy.gp").find("set logscale xy"), std::string::npos);
+  {
+    const std::string gp = read_file(dir / "fig3_active_energy.gp");
+    std::set<std::string> colours[2];
+    const std::regex curve(R"(\$1==([23]) && \$2==[0-9.]+ \? \$4 : 1/0\):[57] lc (\d+))");
+    for (auto it = std::sregex_iterator(gp.begin(), gp.end(), curve); it != std::sregex_iterator();
+         ++it)
+      colours[(*it)[1] == "2" ? 0 : 1].insert((*it)[2]);
+    EXPECT_FALSE(colours[0].empty());
+    EXPECT_FALSE(colours[1].empty());
+    for (const auto& c : colours[0]) EXPECT_EQ(colours[1].count(c), 0u) << "lc " << c;
+  }
+
   const std::string report = read_file(dir / "report.md");
-  for (const char* q :
-       {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
-        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary", "numbers compared",
-        "Sensitivity", "Plateaus and their drift", "corrected b"})
+  EXPECT_TRUE(names_only_existing_files(report, dir)) << "report.md";
+  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
+                        "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary",
+                        "numbers compared", "Sensitivity", "Plateaus and their drift",
+                        "corrected b", "The offset of E_t and R_t from alpha = 1/3 in 2D"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
+}
+
+TEST(CliFigures, EstimateTimesEveryStageOfTheJob) {
+  // --estimate runs the job on a sample and times each stage: the cases, the phi1/phi2
+  // readings, and Fig. 1 with the plots; its CPU total is their sum, and it leaves no figures.
+  const auto dir = scratch_dir("estimate");
+  const auto r =
+      grainshock("figures --tiny --estimate --sample 1 --threads 2 --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(read_file(dir / "estimate.json"));
+  double sum =
+      j.at("readings_cpu_seconds").get<double>() + j.at("figures_cpu_seconds").get<double>();
+  EXPECT_GT(j.at("figures_cpu_seconds").get<double>(), 0);  // Fig. 1's runs, gnuplot
+  for (const Json& c : j.at("cases")) {
+    EXPECT_GT(c.at("cpu_seconds_per_realisation").get<double>(), 0) << c.dump();
+    sum += c.at("estimated_cpu_seconds").get<double>();
+  }
+  EXPECT_EQ(j.at("cases").size(), 20u);  // every case of the tiny plan
+  EXPECT_NEAR(j.at("estimated_cpu_seconds").get<double>(), sum, 1e-9 * sum);
+  // On 2 threads the realisations share the cores; the serial stages do not.
+  EXPECT_LE(j.at("estimated_wall_seconds_from_cpu").get<double>(),
+            j.at("estimated_cpu_seconds").get<double>());
+  const std::string md = read_file(dir / "estimate.md");
+  for (const char* q : {"Fig. 1", "phi1 and phi2 readings", "CPU-s", "quiet 2-core machine"})
+    EXPECT_NE(md.find(q), std::string::npos) << q;
+  EXPECT_FALSE(fs::exists(dir / "estimate_sample"));
+  EXPECT_FALSE(fs::exists(dir / "report.md"));
 }
 
 TEST(CliFigures, BadInputIsRefusedInOneLine) {

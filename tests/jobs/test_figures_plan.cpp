@@ -110,5 +110,34 @@ TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
   }
 }
 
+TEST(FiguresPlan, Fig1IsAtThePapersTimesInThePapersBox) {
+  // The paper's Fig. 1: r = 0.1 at t = 5000, 10000, 20000, 50000 and r = 1 at 25000 in its time
+  // unit, 2.5e5 discs at n = 0.25 (the kick at (500, 500) of a box of side 1000).
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    const FiguresPlan::Fig1& f = figures_plan(m, 1).fig1;
+    EXPECT_TRUE(f.paper_times);
+    const std::vector<double> paper = {5000, 10000, 20000, 50000};
+    ASSERT_EQ(f.a_times.size(), paper.size());
+    for (std::size_t k = 0; k < paper.size(); ++k)
+      EXPECT_NEAR(f.a.paper_time(f.a_times[k]), paper[k], 1e-9 * paper[k]) << to_string(m);
+    EXPECT_NEAR(f.b.paper_time(f.b_time), 25000, 1e-9 * 25000) << to_string(m);
+    for (const PhysicsConfig* p : {&f.a, &f.b}) {
+      EXPECT_EQ(p->dim, 2);
+      EXPECT_EQ(p->particles, 250000);
+      EXPECT_NEAR(p->box(), 1000, 1e-9);
+    }
+    EXPECT_EQ(f.a.restitution, 0.1);
+    EXPECT_EQ(f.b.restitution, 1.0);
+    EXPECT_EQ(f.a.t_max, f.a_times.back());
+    EXPECT_EQ(f.b.t_max, f.b_time);
+  }
+  // --tiny: the paper's times in ratio, scaled into its small box, and said to be.
+  const FiguresPlan tiny = figures_plan(FiguresMode::Tiny, 1);
+  EXPECT_FALSE(tiny.fig1.paper_times);
+  EXPECT_EQ(tiny.fig1.a_times.back(), find_case(tiny, 2, 0.1)->spec.physics.t_max);
+  EXPECT_DOUBLE_EQ(tiny.fig1.a_times.front() * 10, tiny.fig1.a_times.back());
+  EXPECT_EQ(tiny.fig1.a.particles, find_case(tiny, 2, 0.1)->spec.physics.particles);
+}
+
 }  // namespace
 }  // namespace gs::jobs
