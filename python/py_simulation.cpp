@@ -71,7 +71,7 @@ class PySimulation {
 PhysicsConfig physics(int dim, pb::object particles, double density, double restitution,
                       double cutoff, double speed, std::uint64_t seed, std::uint64_t realisation,
                       const std::string& initial, const std::string& kick_site, double temperature,
-                      double lattice, double t_max) {
+                      double lattice, double t_max, const std::string& medium) {
   PhysicsConfig c;
   c.dim = dim;
   // 2e6 is accepted as the flag accepts it, when it is a whole number.
@@ -91,6 +91,7 @@ PhysicsConfig physics(int dim, pb::object particles, double density, double rest
   c.temperature = temperature;
   c.lattice = lattice;
   c.t_max = t_max;
+  c.medium = parse_medium(medium);
   validate(c);
   check_memory(c);
   return c;
@@ -104,7 +105,7 @@ PhysicsConfig physics(const pb::kwargs& kw) {
   for (auto [key, value] : kw) {
     static const std::set<std::string> known = {
         "dim", "particles", "density", "restitution", "cutoff", "speed", "seed", "realisation",
-        "initial", "kick_site", "temperature", "lattice", "t_max"};
+        "initial", "kick_site", "temperature", "lattice", "t_max", "medium"};
     if (!known.contains(pb::str(key).cast<std::string>()))
       throw pb::type_error("unexpected keyword argument '" + pb::str(key).cast<std::string>() +
                            "'");
@@ -115,7 +116,8 @@ PhysicsConfig physics(const pb::kwargs& kw) {
                  get("cutoff", d.cutoff), get("speed", d.speed), get("seed", d.seed),
                  get("realisation", d.realisation), get("initial", std::string("kick")),
                  get("kick_site", std::string("random")), get("temperature", d.temperature),
-                 get("lattice", d.lattice), get("t_max", d.t_max));
+                 get("lattice", d.lattice), get("t_max", d.t_max),
+                 get("medium", std::string(to_string(d.medium))));
 }
 
 namespace {
@@ -135,6 +137,7 @@ pb::dict config_dict(const PhysicsConfig& c) {
   d["temperature"] = c.temperature;
   d["lattice"] = c.lattice;
   d["t_max"] = c.t_max;
+  d["medium"] = to_string(c.medium);
   d["box"] = c.box();
   return d;
 }
@@ -172,10 +175,11 @@ large gas takes a moment.
       .def(pb::init([](int dim, pb::object particles, double density, double restitution,
                        double cutoff, double speed, std::uint64_t seed, std::uint64_t realisation,
                        const std::string& initial, const std::string& kick_site,
-                       double temperature, double lattice, double t_max) {
+                       double temperature, double lattice, double t_max,
+                       const std::string& medium) {
              const PhysicsConfig c = physics(dim, particles, density, restitution, cutoff, speed,
                                              seed, realisation, initial, kick_site, temperature,
-                                             lattice, t_max);
+                                             lattice, t_max, medium);
              std::unique_ptr<Simulation> sim;
              {
                pb::gil_scoped_release release;
@@ -189,7 +193,7 @@ large gas takes a moment.
            pb::arg("seed") = def.seed, pb::arg("realisation") = def.realisation,
            pb::arg("initial") = "kick", pb::arg("kick_site") = "random",
            pb::arg("temperature") = def.temperature, pb::arg("lattice") = def.lattice,
-           pb::arg("t_max") = def.t_max)
+           pb::arg("t_max") = def.t_max, pb::arg("medium") = "box")
       .def("run_until", &PySimulation::run_until, pb::arg("t"),
            R"(Processes every event up to time t (units of diameter / v0) and leaves the clock there.
 

@@ -20,7 +20,7 @@ def test_defaults_are_the_flags():
 
 @pytest.mark.parametrize("flag,value", [("restitution", 2.0), ("density", -1.0), ("dim", 4),
                                         ("initial", "hot"), ("kick_site", "edge"),
-                                        ("particles", 1.5)])
+                                        ("particles", 1.5), ("medium", "open")])
 def test_bad_value_raises_the_command_lines_message(out_dir, flag, value):
     with pytest.raises(ValueError) as e:
         gs.Simulation(**{"particles": 500, flag: value})
@@ -32,6 +32,20 @@ def test_bad_value_raises_the_command_lines_message(out_dir, flag, value):
     assert cli.returncode != 0
     if flag != "particles":  # the command's integer parser words that one itself
         assert message in cli.stderr
+
+
+def test_unbounded_medium_holds_what_it_made(tmp_path):
+    sim = gs.Simulation(particles=20000, restitution=0.5, medium="unbounded")
+    assert sim.config["medium"] == "unbounded"
+    sim.run_until(200)
+    made = sim.snapshot(active_only=False)
+    assert sim.sample()["active"] < len(made) < 20000
+    sim.save(tmp_path / "sim.bin")
+    again = gs.Simulation.load(tmp_path / "sim.bin")
+    sim.run_until(400)
+    again.run_until(400)
+    assert np.array_equal(sim.snapshot(active_only=False).positions,
+                          again.snapshot(active_only=False).positions)
 
 
 def test_run_until_matches_the_command(out_dir):
