@@ -132,8 +132,8 @@ std::vector<Long3D> long3d_cases() {
 // 8.2e5 active spheres, R_rms 83 (R ~ t^0.29 over 5e4-1e5) and 8.7e5 made (peak RSS 615 MB with
 // an XYZ snapshot written); made ~ R^3 extrapolates to ~8e6 at 1.2e6. 3D r = 0.95 spreads
 // further: R_rms 99.6 and 1.56e6 made at 1e5 (R ~ t^0.32 over 5.6e4-1e5; peak RSS 951 MB) and,
-// with R ~ t^0.27-0.29 after, 310-340 at 6.5e6, i.e. 4.6-5.9e7 made. Caps: 2.5e7 for 3D r = 0.9, two
-// realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
+// with R ~ t^0.27-0.29 after, 310-340 at 6.5e6, i.e. 4.6-5.9e7 made. Caps: 2.5e7 for 3D r = 0.9,
+// two realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
 // with a snapshot); 5e7 for 3D r = 0.95, one realisation at a time (21 GB), at the edge of what
 // it needs: this case is the one issue 31 part 2's smaller particles are for. 2D: 2e6 (R ~
 // t^(1/3)-t^0.4: r = 0.95 has R_rms 280 and 7.7e4 active at 1.4e5, so ~6e5 made at 1.6e6).
@@ -142,6 +142,11 @@ std::vector<Long3D> long3d_cases() {
 // 6435 distinct resamples); 12 in 3D r = 0.9 as --full's added 3D r, 8 at 0.95 (each costs ~5
 // times more); 2D as --full's 0.9 and 0.95 (32, 24), being cheap.
 // --estimate runs each sample to t_max / 30 (1.5 decades short, past t_c1 in every case).
+// `figures --limit --estimate` (sample 2, load ~3.4): 2.24e5 CPU-s, 60 h on a quiet 2-core
+// machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per realisation, one at a time; the sample
+// to 2.17e5 took 358 per realisation, its collisions growing as t^1.26), 3D r = 0.9 1.5e4, 2D
+// 2.5e3, the --quick cases 230. With the inelastic regime's constant collision rate (g = 1)
+// instead of the sample's end: 9.4e4 CPU-s, ~25 h.
 struct LimitCase {
   int d;
   double r;
