@@ -146,7 +146,8 @@ std::vector<Long3D> long3d_cases() {
 // machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per realisation, one at a time; the sample
 // to 2.17e5 took 358 per realisation, its collisions growing as t^1.26), 3D r = 0.9 1.5e4, 2D
 // 2.5e3, the --quick cases 230. With the inelastic regime's constant collision rate (g = 1)
-// instead of the sample's end: 9.4e4 CPU-s, ~25 h.
+// instead of the sample's end: 9.4e4 CPU-s, ~25 h. Checked: one 3D r = 0.9 realisation to 3.5e5
+// (bench sim/kick3d_r0.9_plateau) took 272 CPU-s, 275 extrapolated from this sample's 17.5 at 4e4.
 struct LimitCase {
   int d;
   double r;
