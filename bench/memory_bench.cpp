@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bench/bench.h"
+#include "jobs/figures_plan.h"
 #include "sim/engine.h"
 #include "sim/error.h"
 
@@ -35,7 +36,8 @@ struct Footprint {
   double active = 0;       // particles that have moved by t_max
   double made = 0;         // particles the engine holds at t_max
   double collisions = 0, events = 0;
-  double run_cpu = 0;  // CPU-seconds of run_until
+  double run_cpu = 0;   // CPU-seconds of run_until
+  double run_wall = 0;  // wall seconds of run_until
 };
 
 PhysicsConfig kick_at(int dim, std::int64_t n, double t_max) {
@@ -62,9 +64,10 @@ Footprint kick_footprint(const PhysicsConfig& c) {
     auto sim = make_simulation(c);
     Footprint f;
     f.constructed = resident_bytes();
-    const double cpu0 = cpu_seconds();
+    const double cpu0 = cpu_seconds(), wall0 = wall_seconds();
     sim->run_until(c.t_max);
     f.run_cpu = cpu_seconds() - cpu0;
+    f.run_wall = wall_seconds() - wall0;
     f.after_run = resident_bytes();
     f.active = static_cast<double>(sim->sample().active);
     f.made = static_cast<double>(sim->snapshot().size());
@@ -144,6 +147,31 @@ std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max,
           {"unbounded_particles_made_mean", open.made, "", ""}};
 }
 
+// One realisation of `figures --limit`'s 3D r = 0.9 case (its physics and cap on made particles,
+// from the plan) run to the time its E_t slope is expected to plateau: what each of that case's
+// realisations spends before its plateau window starts. Measured (t = 3.5e5, load ~3): 272 s
+// wall and CPU, 2.35e5 collisions per CPU-second, 2.24e6 active and 2.35e6 made, peak 934 MB (398
+// B per made sphere, the engine's estimate 425).
+std::vector<Figure> kick_to_plateau() {
+  const jobs::FiguresPlan plan = jobs::figures_plan(jobs::FiguresMode::Full, 1, false, true);
+  for (const auto& c : plan.cases) {
+    const PhysicsConfig& p = c.spec.physics;
+    if (c.role != jobs::CaseRole::Limit || p.dim != 3 || p.restitution != 0.9) continue;
+    PhysicsConfig run = p;
+    run.t_max = c.plateau_start;
+    const Footprint f = kick_footprint(run);
+    return {{"t_max", run.t_max, "", ""},
+            {"peak_megabytes", f.peak / 1e6, "MB", ""},
+            {"wall_seconds", f.run_wall, "s", ""},
+            {"cpu_seconds", f.run_cpu, "s", ""},
+            {"collisions_per_cpu_second", f.collisions / f.run_cpu, "1/s", ""},
+            {"active", f.active, "", ""},
+            {"particles_made", f.made, "", ""},
+            {"peak_bytes_per_made_particle", f.peak / std::max(1.0, f.made), "B", ""}};
+  }
+  throw UserError("bench: the --limit plan has no 3D r = 0.9 case");
+}
+
 }  // namespace
 
 void add_memory_cases(std::vector<Case>& cases) {
@@ -163,6 +191,10 @@ void add_memory_cases(std::vector<Case>& cases) {
                    "3D r = 0.8 kick to t = 1e4, 4 realisations: box of 2e6 spheres against the "
                    "unbounded medium",
                    false, [] { return unbounded_against_box(3, 2000000, 10000, 4); }});
+  cases.push_back({"sim/kick3d_r0.9_plateau",
+                   "3D r = 0.9 kick of figures --limit in the unbounded medium to the time its "
+                   "E_t slope's plateau starts, one realisation",
+                   true, kick_to_plateau});
 }
 
 }  // namespace gs::bench

@@ -54,9 +54,25 @@ class Meter {
 // What one pass over a plan cost, stage by stage, for --estimate.
 struct PassCosts {
   std::vector<Cost> runs, fits;  // per case: its realisations; its fits and ensemble folder
+  std::vector<double> growth;    // per case: collision_growth of its mean time series
   Cost crossovers;               // phi1 and phi2 readings (resampling realisations)
   Cost figures;                  // Fig. 1's two realisations, the plots, summary and report
 };
+
+// d ln C / d ln t of the mean collision count over the last half decade of a run: how a run's
+// cost grows at its end, for --estimate to extrapolate a sample shortened in time. In the
+// inelastic regime it tends to 1 (the collision rate N_t n v_t ~ t^(alpha d + alpha - 1) = t^0
+// with alpha = 1/(d+1)); from the elastic blast before t_c1 it comes down from 1 + d/(d+2), so a
+// sample that ends before the rate has settled overestimates.
+double collision_growth(const Table& ts) {
+  const auto& t = ts.column("t");
+  const auto& c = ts.column("collisions");
+  const double t_end = t.back();
+  std::size_t k = 0;
+  while (t[k] < t_end / std::sqrt(10.0)) ++k;
+  if (!(c[k] > 0) || !(t_end > t[k])) return std::nan("");
+  return std::log(c.back() / c[k]) / std::log(t_end / t[k]);
+}
 
 // The job: every case of the plan, then crossovers, comparisons, figures, summary.json and
 // report.md into `dir`. The estimate runs the same pass on a sampled plan.
@@ -70,7 +86,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
   std::vector<Comparison> cmp;
   for (const auto& c : plan.cases) {
     RunnerOptions ro;
-    ro.threads = o.threads;
+    ro.threads = c.threads_of(o.threads);
     ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
       progress->update(double(done_before + done) / double(total),
                        c.name + ": " + std::to_string(done) + " of " +
@@ -101,6 +117,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     if (costs) {
       costs->runs.push_back(run_cost);
       costs->fits.push_back(fit_meter.read());
+      costs->growth.push_back(collision_growth(results.back().sums.timeseries()));
     }
   }
   progress->done();
@@ -129,17 +146,25 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
 
 // --estimate: the whole job with `sample` realisations per case, in a scratch folder removed
 // after, each stage timed: a case's realisations scaled by M / sample (run `threads` at a time:
-// ceil(M / threads) rounds), the rest as measured. The fits and the phi1/phi2 readings cost
-// about the same for 2 realisations as for 16: their resampling works on the time grid (200
-// draws of a plateau search), and summing a draw's realisations is cheap. Measured (CPU-s,
-// 2 threads, sample 2): --tiny 17.2 estimated, 16.9 run; --quick 250 estimated, 242 run; scaling
-// the fits by M / sample too gave 22.5 and 324. From CPU time, which another program on the
-// machine changes least, that is the wall time on a quiet machine with `threads` cores; from
-// wall time, on this machine as loaded now.
+// ceil(M / threads) rounds), the rest as measured. A case with an estimate_t_max (--limit's,
+// hours long) samples only to that time, its cost per realisation scaled by (t_max /
+// estimate_t_max)^g, g the collisions' growth at the sample's end (collision_growth). The fits and
+// the phi1/phi2 readings cost about the same for 2 realisations as for 16: their resampling works
+// on the time grid (200 draws of a plateau search), and summing a draw's realisations is cheap.
+// Measured (CPU-s, 2 threads, sample 2): --tiny 17.2 estimated, 16.9 run; --quick 250 estimated,
+// 242 run; scaling the fits by M / sample too gave 22.5 and 324. From CPU time, which another
+// program on the machine changes least, that is the wall time on a quiet machine with `threads`
+// cores; from wall time, on this machine as loaded now.
 void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir) {
   FiguresPlan sampled = plan;
-  for (auto& c : sampled.cases)
+  for (auto& c : sampled.cases) {
     c.spec.realisations = std::min<std::uint64_t>(c.spec.realisations, std::uint64_t(o.sample));
+    if (c.estimate_t_max > 0) {
+      const double f = c.estimate_t_max / c.spec.physics.t_max;
+      c.spec.physics.t_max = c.estimate_t_max;
+      for (double& t : c.spec.snapshot_times) t *= f;
+    }
+  }
   const fs::path scratch = dir / "estimate_sample";
   fs::create_directories(scratch);
   PassCosts costs;
@@ -169,30 +194,40 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
     total_cpu += cpu;
     total_quiet += quiet;
   };
-  const double threads = o.threads;
   for (std::size_t k = 0; k < plan.cases.size(); ++k) {
     const FigureCase& c = plan.cases[k];
+    const double threads = c.threads_of(o.threads);
     const double m = double(c.spec.realisations), s = double(sampled.cases[k].spec.realisations);
     const Cost run = costs.runs[k], fit = costs.fits[k];
-    const double per = run.cpu / s;
+    const double sample_t = sampled.cases[k].spec.physics.t_max;
+    const double longer = std::pow(c.spec.physics.t_max / sample_t, costs.growth[k]);
+    const double per = run.cpu / s * longer;
     // Realisations run `threads` at a time: the last round may leave threads idle.
     const double rounds = std::ceil(m / threads);
     const double quiet_run = per * rounds;
-    const double wall_run = run.wall / std::ceil(s / threads) * rounds;
+    const double wall_run = run.wall / std::ceil(s / threads) * rounds * longer;
     cases.push_back({{"case", c.name},
                      {"particles", c.spec.physics.particles},
                      {"t_max", c.spec.physics.t_max},
                      {"realisations", c.spec.realisations},
+                     {"threads", threads},
+                     {"sample_t_max", sample_t},
+                     {"collision_growth", costs.growth[k]},
                      {"sample_wall_seconds", run.wall},
                      {"cpu_seconds_per_realisation", per},
                      {"fit_cpu_seconds_of_sample", fit.cpu},
                      {"estimated_cpu_seconds", per * m + fit.cpu},
                      {"estimated_wall_seconds", wall_run + fit.wall},
                      {"estimated_wall_seconds_from_cpu", quiet_run + fit.cpu}});
-    row(c.name + " (runs + fits)", std::to_string(c.spec.physics.particles),
-        figure_number(c.spec.physics.t_max), std::to_string(c.spec.realisations),
-        {run.wall + fit.wall, run.cpu + fit.cpu}, figure_number(per), per * m + fit.cpu,
-        quiet_run + fit.cpu, wall_run + fit.wall);
+    const std::string stage =
+        c.name + " (runs + fits" +
+        (c.estimate_t_max > 0 ? "; sample to t = " + figure_number(sample_t, 3) +
+                                    ", cost x (t_max / t)^" + figure_number(costs.growth[k], 3)
+                              : std::string()) +
+        ")";
+    row(stage, std::to_string(c.spec.physics.particles), figure_number(c.spec.physics.t_max),
+        std::to_string(c.spec.realisations), {run.wall + fit.wall, run.cpu + fit.cpu},
+        figure_number(per), per * m + fit.cpu, quiet_run + fit.cpu, wall_run + fit.wall);
   }
   row("phi1 and phi2 readings", "", "", "", costs.crossovers, "", costs.crossovers.cpu,
       costs.crossovers.cpu, costs.crossovers.wall);
@@ -208,13 +243,18 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   write_file_atomic(dir / "estimate.json", json_text(j));
   std::ostringstream md;
   md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
-     << (o.long_3d ? " --long" : "") << "`\n\n"
+     << (o.long_3d ? " --long" : "") << (o.limit ? " --limit" : "") << "`\n\n"
      << "The whole job run with " << o.sample << " realisations per case on " << o.threads
      << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
      << " in rounds of " << o.threads
-     << " (ceil(M / threads) rounds); its fits, the phi1 and phi2 readings, Fig. 1 and the "
+     << " (ceil(M / threads) rounds; one at a time where a case's memory needs it); its fits, the "
+        "phi1 and phi2 readings, Fig. 1 and the "
         "plots as measured (the fits and readings resample on the time grid and cost about the "
-        "same for 2 realisations as for 16: --quick estimated 250 CPU-s, ran 242). CPU time "
+        "same for 2 realisations as for 16: --quick estimated 250 CPU-s, ran 242). A stage "
+        "sampled to a shorter t has its cost per realisation scaled by (t_max / t)^g, g = d ln "
+        "(collisions) / d ln t over the sample's last half decade (1 in the inelastic regime, "
+        "more before it, so an overestimate if the sample ends before the rate settles; the cost "
+        "per collision of a larger medium is taken as the sample's). CPU time "
         "counts every thread and gnuplot. "
         "'Quiet': the wall time on an otherwise idle machine with "
      << o.threads << " cores, from CPU time; 'this load': from the wall time measured now.\n\n"
@@ -235,7 +275,7 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
 FiguresResult run_figures_job(const FiguresOptions& o) {
   if (o.threads < 1) throw UsageError("--threads must be at least 1");
   if (o.sample < 1) throw UsageError("--sample must be at least 1");
-  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d);
+  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit);
   FiguresResult out;
   out.dir = prepare_output_dir(o.out, o.force);
   const fs::path& dir = out.dir;

@@ -109,6 +109,67 @@ std::vector<Long3D> long3d_cases() {
   return {{0.1, 4000000, 1e6, 16}, {0.5, 4000000, 1e6, 16}};
 }
 
+// --limit (issue 31 part 3): phi1 nearest the elastic limit, from 2D and 3D r = 0.9 and 0.95 run in
+// the unbounded medium (sim/unbounded_medium.h) until E_t's local slope has plateaued. The
+// plateau rule (analysis/effective_exponent.h, asymptotic_plateau) needs a window of at least
+// half a decade ending near the last sample, so each t_max lies at least 0.5 decade past the
+// time the plateau is expected to start:
+//  - 3D r = 0.9: still drifting at 1e5 (above); r = 0.7's plateau starts at ~3e4, and scaled by
+//    t_c1 ~ (1 - r^2)^-phi1 with phi1 = 2.5 (the measured value nearest the elastic limit,
+//    2.5 +- 0.2) that is (0.19 / 0.51)^-2.5 = 12 times later, ~3.5e5: "needs t ~ 1e6", as
+//    measured before. t_max 1.2e6, 0.53 decade past it.
+//  - 2D r = 0.9: plateaus by ~5e4-1e5 (N_t's and E_t's slopes of --full); from 1e5, t_max 4e5.
+//  - r = 0.95: the start of r = 0.9 times ((1 - 0.95^2) / (1 - 0.9^2))^-phi1 = 0.513^-phi1, with
+//    phi1 = 2.5 in 3D (x5.3: 1.9e6; phi1 = 3 would give x7.4, 2.6e6 from the same r = 0.9 start)
+//    and 2.25 in 2D (x4.5: 4.5e5). 3D t_max 6.5e6 (0.53 decade; 0.4 decade past the phi1 = 3
+//    start), 2D 1.6e6 (0.55 decade).
+// Cutoffs: t_c2 ~ delta^-(1/(1-alpha)) must stay far beyond t_max. 2D 1e-6: t_c2 ~ 2.5e8 by the
+// delta scan (2.2e4 (5e-4 / delta)^1.5), 150 times 1.6e6; 3D 1e-7: at 1e-4 E_t's slope turns up
+// from ~3e4 at r = 0.7, so ~3e4 x 1000^(4/3) = 3e8 at 1e-7, where 1e-6 (1.4e7) would come
+// within a factor 2 of r = 0.95's t_max.
+// Caps on made particles (--particles; a run stops with a message if the medium needs more).
+// Measured in the unbounded medium (one realisation, delta = 1e-7): 3D r = 0.9 at t = 1e5 has
+// 8.2e5 active spheres, R_rms 83 (R ~ t^0.29 over 5e4-1e5) and 8.7e5 made (peak RSS 615 MB with
+// an XYZ snapshot written); made ~ R^3 extrapolates to ~8e6 at 1.2e6. 3D r = 0.95 spreads
+// further: R_rms 99.6 and 1.56e6 made at 1e5 (R ~ t^0.32 over 5.6e4-1e5; peak RSS 951 MB) and,
+// with R ~ t^0.27-0.29 after, 310-340 at 6.5e6, i.e. 4.6-5.9e7 made. Caps: 2.5e7 for 3D r = 0.9,
+// two realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
+// with a snapshot); 5e7 for 3D r = 0.95, one realisation at a time (21 GB), at the edge of what
+// it needs: this case is the one issue 31 part 2's smaller particles are for. 2D: 2e6 (R ~
+// t^(1/3)-t^0.4: r = 0.95 has R_rms 280 and 7.7e4 active at 1.4e5, so ~6e5 made at 1.6e6).
+// Realisations: t_c1's interval comes from resampling realisations (200 draws, percentiles), and
+// a percentile interval over M realisations is set by single realisations below M ~ 8 (8 gives
+// 6435 distinct resamples); 12 in 3D r = 0.9 as --full's added 3D r, 8 at 0.95 (each costs ~5
+// times more); 2D as --full's 0.9 and 0.95 (32, 24), being cheap.
+// --estimate runs each sample to t_max / 30 (1.5 decades short, past t_c1 in every case).
+// `figures --limit --estimate` (sample 2, load ~3.4): 2.24e5 CPU-s, 60 h on a quiet 2-core
+// machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per realisation, one at a time; the sample
+// to 2.17e5 took 358 per realisation, its collisions growing as t^1.26), 3D r = 0.9 1.5e4, 2D
+// 2.5e3, the --quick cases 230. With the inelastic regime's constant collision rate (g = 1)
+// instead of the sample's end: 9.4e4 CPU-s, ~25 h. Checked: one 3D r = 0.9 realisation to 3.5e5
+// (bench sim/kick3d_r0.9_plateau) took 272 CPU-s, 275 extrapolated from this sample's 17.5 at 4e4.
+struct LimitCase {
+  int d;
+  double r;
+  std::int64_t cap;  // particles the medium may make
+  double plateau_start, t_max;
+  std::uint64_t realisations;
+  int concurrent = 0;  // FigureCase::concurrent
+};
+std::vector<LimitCase> limit_cases(FiguresMode m) {
+  if (m == FiguresMode::Tiny)  // smoke run: every file, no plateau
+    return {{2, 0.9, 50000, 0, 1500, 3},
+            {2, 0.95, 50000, 0, 1500, 3},
+            {3, 0.9, 100000, 0, 600, 3},
+            {3, 0.95, 100000, 0, 600, 3}};
+  return {{2, 0.9, 2000000, 1e5, 4e5, 32},
+          {2, 0.95, 2000000, 4.5e5, 1.6e6, 24},
+          {3, 0.9, 25000000, 3.5e5, 1.2e6, 12},
+          {3, 0.95, 50000000, 1.9e6, 6.5e6, 8, 1}};
+}
+constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
+constexpr double kLimitEstimateFraction = 1.0 / 30;
+
 // The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
 // own case, at N >= 4e6 to t = 2e4 in --full, and smaller in --quick, the plateau rule deciding.
@@ -158,6 +219,13 @@ DeltaScan delta_scan_of(FiguresMode m) {
   }
 }
 
+// Snapshot times of a case: the paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and
+// 1 : 5/3 : 2.5 (3D), ending at t_max.
+std::vector<double> collapse_times(int d, double t_max) {
+  return d == 2 ? std::vector<double>{t_max / 2, 0.75 * t_max, t_max}
+                : std::vector<double>{0.4 * t_max, t_max * 2 / 3, t_max};
+}
+
 }  // namespace
 
 const char* to_string(FiguresMode m) {
@@ -171,7 +239,7 @@ const char* to_string(FiguresMode m) {
   }
 }
 
-FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, bool limit) {
   FiguresPlan plan;
   plan.mode = mode;
   auto add = [&](const std::string& name, EnsembleSpec e, CaseRole role) {
@@ -193,10 +261,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
       if (s.r < 1) e.physics.cutoff = d == 3 ? kCutoff3D : kCutoff2D;
       e.physics.t_max = s.t_max;
       e.realisations = s.realisations;
-      // The paper's collapse times are in ratio 1 : 1.5 : 2 (2D) and 1 : 5/3 : 2.5 (3D).
-      const double T = e.physics.t_max;
-      e.snapshot_times = d == 2 ? std::vector<double>{T / 2, 0.75 * T, T}
-                                : std::vector<double>{0.4 * T, T * 2 / 3, T};
+      e.snapshot_times = collapse_times(d, s.t_max);
       // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
       std::string name = "d";
       name.append(std::to_string(d)).append("_r").append(format_number(s.r));
@@ -225,9 +290,30 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d) {
       e.physics.cutoff = kCutoff3D;
       e.physics.t_max = s.t_max;
       e.realisations = s.realisations;
-      const double T = s.t_max;
-      e.snapshot_times = {0.4 * T, T * 2 / 3, T};
+      e.snapshot_times = collapse_times(3, s.t_max);
       add(std::string("d3_r").append(format_number(s.r)).append("_long"), e, CaseRole::Long3D);
+    }
+  }
+  if (limit) {
+    for (const LimitCase& s : limit_cases(mode)) {
+      EnsembleSpec e;
+      e.physics.dim = s.d;
+      e.physics.medium = Medium::Unbounded;
+      e.physics.particles = s.cap;
+      e.physics.restitution = s.r;
+      e.physics.cutoff = s.d == 3 ? kLimitCutoff3D : kLimitCutoff2D;
+      e.physics.t_max = s.t_max;
+      e.realisations = s.realisations;
+      e.snapshot_times = collapse_times(s.d, s.t_max);
+      add(std::string("d")
+              .append(std::to_string(s.d))
+              .append("_r")
+              .append(format_number(s.r))
+              .append("_limit"),
+          e, CaseRole::Limit);
+      plan.cases.back().plateau_start = s.plateau_start;
+      plan.cases.back().estimate_t_max = s.t_max * kLimitEstimateFraction;
+      plan.cases.back().concurrent = s.concurrent;
     }
   }
   {

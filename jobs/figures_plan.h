@@ -3,6 +3,7 @@
 // that the front stays well inside the periodic box (its outer edge below L/2 at t_max), and
 // the snapshot times of the 2D and 3D r = 0.1 ensembles are the paper's Figs. 4 and 5 times
 // scaled to the run (the paper's are 25000, 37500, 50000 and 30000, 50000, 75000 in its unit).
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,10 @@ enum class FiguresMode { Tiny, Quick, Full };
 // Long3D (opt-in, `figures --long`): 3D r = 0.1 and 0.5 to t = 1e6, to show whether 3D alpha =
 // 1/4 is reached on a plateau that passes the drift rule; their exponents are compared, their
 // t_c1 stay out of phi1 (the paper cases of the same r give it).
-enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D };
+// Limit (opt-in, `figures --limit`, issue 31 part 3): 2D and 3D r = 0.9 and 0.95 in the unbounded
+// medium, run until E_t's local slope has plateaued; their t_c1 and energy curves join phi1's
+// readings between neighbouring r, in place of a paper case of the same (d, r).
+enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit };
 
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
@@ -28,6 +32,19 @@ struct FigureCase {
   // The small 3D r = 1 case beside d3_r1_large: kept for Fig. 3, its alpha readings not counted
   // (its box is too small for the late elastic blast).
   bool superseded_for_alpha = false;
+  // Limit: the time from which E_t's local slope is expected to be on its plateau (the plan's
+  // comment says where each comes from); t_max lies at least half a decade past it, the span
+  // the plateau rule needs (analysis/effective_exponent.h).
+  double plateau_start = 0;
+  // The time --estimate's sample runs to (0: t_max); its cost is extrapolated to t_max from the
+  // growth of the collisions at the sample's end (jobs/figures_job.cpp).
+  double estimate_t_max = 0;
+  // Realisations run at once at the most (0: one per thread): a case whose realisation needs
+  // more than half the machine's memory runs them one at a time.
+  int concurrent = 0;
+  int threads_of(int threads) const {
+    return concurrent > 0 ? std::min(threads, concurrent) : threads;
+  }
 };
 
 struct FiguresPlan {
@@ -46,8 +63,10 @@ struct FiguresPlan {
 };
 
 const char* to_string(FiguresMode m);
-// long_3d: add the Long3D cases to the mode's plan.
-FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false);
+// long_3d: add the Long3D cases to the mode's plan; limit: the Limit cases (in --tiny scaled down
+// like the rest of it, to a smoke run).
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false,
+                         bool limit = false);
 
 // The case of dimension d and restitution r, or nullptr.
 const FigureCase* find_case(const FiguresPlan& plan, int d, double r);

@@ -70,6 +70,23 @@ std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int 
   return out;
 }
 
+// The r < 1 cases of dimension d that phi1 is read from, r ascending (towards the elastic limit):
+// the paper's, a Limit case (`figures --limit`) taking the place of the paper case of its r, the
+// same physics run to its plateau in the unbounded medium.
+std::vector<const CaseResult*> phi1_cases(const std::vector<CaseResult>& all, int d) {
+  std::vector<const CaseResult*> out = cases_of(all, d, false);
+  for (const auto& c : all) {
+    if (c.plan->role != CaseRole::Limit || c.plan->spec.physics.dim != d) continue;
+    const double r = c.plan->spec.physics.restitution;
+    std::erase_if(out, [&](const CaseResult* p) { return p->plan->spec.physics.restitution == r; });
+    out.push_back(&c);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const CaseResult* a, const CaseResult* b) {
+    return a->plan->spec.physics.restitution < b->plan->spec.physics.restitution;
+  });
+  return out;
+}
+
 // Theory lines are told apart by dimension: d = 2 black dashes, d = 3 dark red dots-dashes.
 std::string theory_style(int d) {
   return d == 2 ? "lw 2 dt 2 lc rgb 'black'" : "lw 2 dt 4 lc rgb '#a00000'";
@@ -482,7 +499,7 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
     CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}, {}};
     CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}, {}};
     std::vector<EnergyCurves> curves;
-    for (const CaseResult* c : cases_of(results, d, false)) {
+    for (const CaseResult* c : phi1_cases(results, d)) {
       const double r = c->plan->spec.physics.restitution;
       EnergyCurves ec;
       ec.control = 1 - r * r;

@@ -35,7 +35,8 @@ struct CrossoverSet {
   std::vector<Phi1Reading> energy;
 };
 
-// t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1) by the intersection rule and,
+// t_c1 against 1 - r^2 for each dimension (phi1, from every r < 1, the Limit cases of
+// `figures --limit` in place of the paper cases of their r) by the intersection rule and,
 // beside it, with E_t's exponent fixed at the theory's; t_c2 against the cutoff delta (phi2,
 // from the 2D r = 0.1 scan).
 struct Crossovers {

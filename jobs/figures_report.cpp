@@ -27,7 +27,9 @@ std::string crossover_notes(const std::vector<CaseResult>& results) {
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
     const bool scan = c.plan->role == CaseRole::DeltaScan;
-    if (!(c.plan->role == CaseRole::Paper && p.restitution < 1) && !scan) continue;
+    const bool tc1_case =
+        (c.plan->role == CaseRole::Paper || c.plan->role == CaseRole::Limit) && p.restitution < 1;
+    if (!tc1_case && !scan) continue;
     const Crossover& tc = scan ? c.fits.tc2 : c.fits.tc1;
     if (tc.found && !scan) continue;
     notes << "- " << (scan ? "t_c2" : "t_c1") << " of " << c.plan->name << " (d = " << p.dim
@@ -51,7 +53,9 @@ std::string local_phi1_markdown(const Crossovers& crossovers) {
         "-d ln t_c1 / d ln(1 - r^2) between successive r whose t_c1 is found (intersection "
         "rule), with 95% bootstrap intervals. phi1 is defined by the divergence as r -> 1: a "
         "drift along the rows means that the fit over all r mixes regimes, and the last row is "
-        "the estimate nearest the elastic limit.\n\n"
+        "the estimate nearest the elastic limit. With `--limit`, r = 0.9 and 0.95 come from the "
+        "*_limit cases (the unbounded medium, run until E_t's local slope plateaus), here and in "
+        "the energy readings below.\n\n"
         "| d | between | phi1 | 95% interval |\n|---|---|---|---|\n";
   for (const auto& set : crossovers.tc1)
     for (const auto& e : set.local)

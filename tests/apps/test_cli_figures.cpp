@@ -158,22 +158,52 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 
+TEST(CliFigures, TinyLimitJoinsThePhi1TablesFromTheUnboundedMedium) {
+  // --limit's cases scaled down: r = 0.9 and 0.95 in the unbounded medium, their own ensemble
+  // folders and slope figures, and the phi1 readings between neighbouring r running on to 0.95
+  // in both dimensions (the tiny paper plan stops at 0.9), 0.9 read from the *_limit case.
+  const auto dir = scratch_dir("limit");
+  const auto r =
+      grainshock("figures --tiny --limit --threads 2 --quiet --format png --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* c : {"d2_r0.9_limit", "d2_r0.95_limit", "d3_r0.9_limit", "d3_r0.95_limit"}) {
+    const std::string toml = read_file(dir / "ensembles" / c / "ensemble.toml");
+    EXPECT_NE(toml.find("medium = \"unbounded\""), std::string::npos) << c << "\n" << toml;
+    EXPECT_TRUE(is_png(dir / ("fig8_local_slopes_" + std::string(c) + ".png"))) << c;
+  }
+  const std::string report = read_file(dir / "report.md");
+  for (const char* row : {"| 2 | r = 0.9 and r = 0.95 |", "| 3 | r = 0.9 and r = 0.95 |",
+                          "| 3 | r = 0.85 and r = 0.9 |"})
+    EXPECT_NE(report.find(row), std::string::npos) << row;
+  // One reading per neighbouring pair: r = 0.9 once in 3D (the limit case in the paper case's
+  // place), not twice.
+  EXPECT_EQ(report.find("| 3 | r = 0.9 and r = 0.9 |"), std::string::npos);
+}
+
 TEST(CliFigures, EstimateTimesEveryStageOfTheJob) {
   // --estimate runs the job on a sample and times each stage: the cases, the phi1/phi2
   // readings, and Fig. 1 with the plots; its CPU total is their sum, and it leaves no figures.
+  // --limit's cases are sampled to a shorter time and their cost extrapolated to t_max.
   const auto dir = scratch_dir("estimate");
-  const auto r =
-      grainshock("figures --tiny --estimate --sample 1 --threads 2 --quiet --out " + dir.string());
+  const auto r = grainshock(
+      "figures --tiny --limit --estimate --sample 1 --threads 2 --quiet --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json j = Json::parse(read_file(dir / "estimate.json"));
   double sum =
       j.at("readings_cpu_seconds").get<double>() + j.at("figures_cpu_seconds").get<double>();
   EXPECT_GT(j.at("figures_cpu_seconds").get<double>(), 0);  // Fig. 1's runs, gnuplot
+  int shortened = 0;
   for (const Json& c : j.at("cases")) {
     EXPECT_GT(c.at("cpu_seconds_per_realisation").get<double>(), 0) << c.dump();
     sum += c.at("estimated_cpu_seconds").get<double>();
+    if (c.at("sample_t_max").get<double>() == c.at("t_max").get<double>()) continue;
+    ++shortened;
+    EXPECT_TRUE(c.at("case").get<std::string>().ends_with("_limit")) << c.dump();
+    EXPECT_LT(c.at("sample_t_max").get<double>(), c.at("t_max").get<double>()) << c.dump();
+    EXPECT_GE(c.at("collision_growth").get<double>(), 0.5) << c.dump();
   }
-  EXPECT_EQ(j.at("cases").size(), 20u);  // every case of the tiny plan
+  EXPECT_EQ(shortened, 4);
+  EXPECT_EQ(j.at("cases").size(), 24u);  // every case of the tiny plan, and --limit's 4
   EXPECT_NEAR(j.at("estimated_cpu_seconds").get<double>(), sum, 1e-9 * sum);
   // On 2 threads the realisations share the cores; the serial stages do not.
   EXPECT_LE(j.at("estimated_wall_seconds_from_cpu").get<double>(),
