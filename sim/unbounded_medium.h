@@ -24,14 +24,13 @@
 // In 1D the box runs start from the uniform hard-rod gas (random_rods in sim/initial.cpp), not
 // RSA; this medium in 1D is RSA (Renyi's car parking) at the same density: its g(r) differs.
 //
-// How the engine will use it (issue 31, not wired yet): the engine's cells are this medium's
-// cells (side s = its cell width, >= 1). Whenever a moving particle's 3^d stencil comes to
-// include a cell not yet made (a cell crossing brings a new layer into reach; a kick's first
-// prediction covers the kicked particle's stencil), the engine calls `particles(cell)` for each
-// such cell before it predicts, appends them as resting particles and marks the cell made; a
-// cell is made once. The checkpoint holds the seed, realisation, density, cell side and the set
-// of made cells (positions need not be stored: `particles` gives them again bit for bit), and
-// the generator's memo is a cache that may be dropped (`clear`) at any time.
+// How the engine uses it (`--medium unbounded`, sim/engine.h): the engine's cells are this
+// medium's cells (side kUnboundedCellSide, sim/config.h). Whenever a moving particle's 3^d stencil
+// comes to include a cell not yet made (a cell crossing brings a new layer into reach; the kick
+// goes to the particle nearest the origin once the cells around it are made), the engine calls
+// `particles(cell)` before it searches, appends them at rest and marks the cell made; a cell is
+// made once. The checkpoint holds the list of made cells and their heads with the particles'
+// state, and the generator's memo is a cache that the engine drops past a bound.
 #include <array>
 #include <cstdint>
 #include <unordered_map>
