@@ -121,6 +121,23 @@ std::string toml_line(const std::string& key, Kind kind, const std::vector<std::
   return out.str() + "\n";
 }
 
+// A flag whose word the physics library parses (--initial, --kick-site, --medium): its one-line
+// UserError becomes CLI11's validation error, so the flag exits 2 as any value out of range.
+template <class T>
+CLI::Option* add_word_option(CLI::App& sub, const std::string& name, T& target,
+                             T (*parse)(const std::string&), const std::string& help) {
+  return sub.add_option_function<std::string>(
+      name,
+      [&target, parse](const std::string& v) {
+        try {
+          target = parse(v);
+        } catch (const UserError& e) {
+          throw CLI::ValidationError(e.what());
+        }
+      },
+      help);
+}
+
 }  // namespace
 
 CLI::Option* input_files(CLI::Option* opt) {
@@ -221,39 +238,15 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
   sub.add_option("--realisation", c.realisation, "Realisation index (selects random streams)")
       ->capture_default_str();
   sub.add_option("--t-max", c.t_max, "Final time in units of diameter / v0")->capture_default_str();
-  sub.add_option_function<std::string>(
-         "--initial",
-         [&c](const std::string& v) {
-           try {
-             c.initial = parse_initial(v);
-           } catch (const UserError& e) {
-             throw CLI::ValidationError(e.what());
-           }
-         },
-         "kick: one particle moves; thermal: a Maxwell gas")
+  add_word_option(sub, "--initial", c.initial, parse_initial,
+                  "kick: one particle moves; thermal: a Maxwell gas")
       ->option_text("kick|thermal (kick)");
-  sub.add_option_function<std::string>(
-         "--kick-site",
-         [&c](const std::string& v) {
-           try {
-             c.kick_site = parse_kick_site(v);
-           } catch (const UserError& e) {
-             throw CLI::ValidationError(e.what());
-           }
-         },
-         "Which particle is kicked: random or the one nearest the centre")
+  add_word_option(sub, "--kick-site", c.kick_site, parse_kick_site,
+                  "Which particle is kicked: random or the one nearest the centre")
       ->option_text("random|centre (random)");
-  sub.add_option_function<std::string>(
-         "--medium",
-         [&c](const std::string& v) {
-           try {
-             c.medium = parse_medium(v);
-           } catch (const UserError& e) {
-             throw CLI::ValidationError(e.what());
-           }
-         },
-         "box: N particles in a periodic box; unbounded (kicks in 2D, 3D): the gas at rest made "
-         "where the front arrives, N the most it may make")
+  add_word_option(sub, "--medium", c.medium, parse_medium,
+                  "box: N particles in a periodic box; unbounded (kicks in 2D, 3D): the gas at "
+                  "rest made where the front arrives, N the most it may make")
       ->option_text("box|unbounded (box)");
   sub.add_option("--temperature", c.temperature, "Temperature of the thermal initial state")
       ->capture_default_str();
