@@ -287,10 +287,7 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     return out;
   }
 
-  const FiguresResult pass = run_pass(o, plan, dir, nullptr);
-  out.problems = pass.problems;
-  out.wall = pass.wall;
-  return out;
+  return run_pass(o, plan, dir, nullptr);
 }
 
 }  // namespace gs::jobs

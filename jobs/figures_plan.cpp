@@ -340,15 +340,13 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     // L/2 = 500 from the centre of mass, none wrapped, 9 CPU-s; r = 0.1 spreads far less.
     f.a.particles = f.b.particles = kFig1Particles;
     for (double t : kFig1aPaperTimes) f.a_times.push_back(t / f.a.paper_time(1.0));
-    f.b_time = kFig1bPaperTime / f.b.paper_time(1.0);
+    f.b.t_max = kFig1bPaperTime / f.b.paper_time(1.0);
   } else {
     // The paper's times in ratio, ending at the tiny run's t_max (its box holds no more).
     const double T = f.a.t_max, last = std::end(kFig1aPaperTimes)[-1];
     for (double t : kFig1aPaperTimes) f.a_times.push_back(T * t / last);
-    f.b_time = f.b.t_max;
   }
   f.a.t_max = f.a_times.back();
-  f.b.t_max = f.b_time;
   return plan;
 }
 

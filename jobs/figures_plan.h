@@ -50,14 +50,13 @@ struct FigureCase {
 struct FiguresPlan {
   FiguresMode mode = FiguresMode::Quick;
   std::vector<FigureCase> cases;
-  // Fig. 1: one realisation of the 2D r = 0.1 case's physics drawn at a_times (overlay) and one
-  // of the 2D r = 1 case's at b_time (simulation units). Quick and full: in the paper's box
+  // Fig. 1: one realisation of the 2D r = 0.1 case's physics drawn at a_times (overlay, the last
+  // its t_max) and one of the 2D r = 1 case's at its t_max (simulation units). Quick and full: in the paper's box
   // (2.5e5 discs) at the paper's times; tiny: in the tiny cases' boxes, the paper's times scaled
   // to the r = 0.1 case's t_max (paper_times false), which the report says.
   struct Fig1 {
     PhysicsConfig a, b;
     std::vector<double> a_times;
-    double b_time = 0;
     bool paper_times = true;
   } fig1;
 };

@@ -477,7 +477,7 @@ Fig1Snapshots run_fig1(const FiguresPlan::Fig1& f) {
     out.a.push_back(sim->snapshot());
   }
   sim = make_simulation(f.b);
-  sim->run_until(f.b_time);
+  sim->run_until(f.b.t_max);
   out.b = sim->snapshot();
   return out;
 }

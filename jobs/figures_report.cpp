@@ -149,7 +149,7 @@ std::string fig1_markdown(const FiguresPlan::Fig1& f) {
   md << "- fig1a_overlay_r0.1.png: the active particles of one 2D r = 0.1 realisation of "
      << f.a.particles << " discs (box side " << figure_number(f.a.box()) << ") at "
      << times(f.a, f.a_times) << ", overlaid (Fig. 1a); fig1b_elastic_r1.png: 2D r = 1, "
-     << f.b.particles << " discs, at " << times(f.b, {f.b_time}) << " (Fig. 1b). "
+     << f.b.particles << " discs, at " << times(f.b, {f.b.t_max}) << " (Fig. 1b). "
      << (f.paper_times
              ? "These are the paper's times and box. "
              : "This mode's box is smaller than the paper's (" + std::to_string(kFig1Particles) +
