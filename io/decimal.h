@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <system_error>
 
 namespace gs {
@@ -89,6 +90,8 @@ inline bool parse_decimal(const char* b, const char* e, double& v) {
     v = negative ? -d : d;
     return true;
   }
+  // The 64-bit significand in the low 8 bytes: x87's 80-bit format (x86-64 Linux).
+  static_assert(std::numeric_limits<long double>::digits == 64);
   static constexpr long double kPow10[28] = {
       1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,  1e7L,  1e8L,  1e9L,
       1e10L, 1e11L, 1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L,
