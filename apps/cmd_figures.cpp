@@ -61,6 +61,8 @@ void add_figures_command(CLI::App& app) {
                 "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
                 "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
                 "cores, nearly all of it 3D r = 0.95; see --limit --estimate");
+  sub->add_option("--limit-dim", opt->limit_dim,
+                  "With --limit, only the cases of this dimension (2: under an hour on 2 cores)");
   sub->add_flag("--tiny", flags->tiny,
                 "Seconds-long smoke run (tests): every file, meaningless numbers");
   sub->add_flag(

@@ -243,7 +243,9 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   write_file_atomic(dir / "estimate.json", json_text(j));
   std::ostringstream md;
   md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
-     << (o.long_3d ? " --long" : "") << (o.limit ? " --limit" : "") << "`\n\n"
+     << (o.long_3d ? " --long" : "") << (o.limit ? " --limit" : "")
+     << (o.limit && o.limit_dim != 0 ? " --limit-dim " + std::to_string(o.limit_dim) : "")
+     << "`\n\n"
      << "The whole job run with " << o.sample << " realisations per case on " << o.threads
      << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
      << " in rounds of " << o.threads
@@ -275,7 +277,10 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
 FiguresResult run_figures_job(const FiguresOptions& o) {
   if (o.threads < 1) throw UsageError("--threads must be at least 1");
   if (o.sample < 1) throw UsageError("--sample must be at least 1");
-  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit);
+  if (o.limit_dim != 0 && o.limit_dim != 2 && o.limit_dim != 3)
+    throw UsageError("--limit-dim must be 2 or 3");
+  if (o.limit_dim != 0 && !o.limit) throw UsageError("--limit-dim needs --limit");
+  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim);
   FiguresResult out;
   out.dir = prepare_output_dir(o.out, o.force);
   const fs::path& dir = out.dir;

@@ -239,7 +239,8 @@ const char* to_string(FiguresMode m) {
   }
 }
 
-FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, bool limit) {
+FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, bool limit,
+                         int limit_dim) {
   FiguresPlan plan;
   plan.mode = mode;
   auto add = [&](const std::string& name, EnsembleSpec e, CaseRole role) {
@@ -296,6 +297,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
   }
   if (limit) {
     for (const LimitCase& s : limit_cases(mode)) {
+      if (limit_dim != 0 && s.d != limit_dim) continue;
       EnsembleSpec e;
       e.physics.dim = s.d;
       e.physics.medium = Medium::Unbounded;

@@ -63,9 +63,10 @@ struct FiguresPlan {
 
 const char* to_string(FiguresMode m);
 // long_3d: add the Long3D cases to the mode's plan; limit: the Limit cases (in --tiny scaled down
-// like the rest of it, to a smoke run).
+// like the rest of it, to a smoke run), of dimension limit_dim only if it is 2 or 3 (the 2D ones
+// take minutes, the 3D ones days).
 FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false,
-                         bool limit = false);
+                         bool limit = false, int limit_dim = 0);
 
 // The case of dimension d and restitution r, or nullptr.
 const FigureCase* find_case(const FiguresPlan& plan, int d, double r);

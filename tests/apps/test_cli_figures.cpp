@@ -230,6 +230,13 @@ TEST(CliFigures, BadInputIsRefusedInOneLine) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir));
+  for (const char* limit : {"--limit --limit-dim 4", "--limit-dim 2"}) {
+    r = grainshock(std::string("figures --tiny ") + limit + " --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2) << limit;
+    EXPECT_EQ(r.err_lines(), 1) << r.err;
+    EXPECT_NE(r.err.find("--limit-dim"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir));
+  }
   fs::create_directories(dir);
   { std::ofstream(dir / "keep.txt") << "mine"; }
   r = grainshock("figures --tiny --out " + dir.string());

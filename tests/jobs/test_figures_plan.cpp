@@ -148,6 +148,15 @@ TEST(FiguresPlan, LimitCasesAreUnboundedPastTheirPlateauAndFitInMemory) {
     }
     // 3D r = 0.9 "needs t ~ 1e6" (issue 31).
     EXPECT_GE(at(3, 0.9)->spec.physics.t_max, 1e6);
+    // --limit-dim keeps one dimension's cases, the same ones.
+    for (int d : {2, 3}) {
+      const auto only = of_role(figures_plan(m, 1, false, true, d), CaseRole::Limit);
+      ASSERT_EQ(only.size(), 2u) << d;
+      for (const FigureCase* c : only) {
+        EXPECT_EQ(c->spec.physics.dim, d) << c->name;
+        EXPECT_EQ(c->spec.physics.t_max, at(d, c->spec.physics.restitution)->spec.physics.t_max);
+      }
+    }
   }
 }
 
