@@ -453,9 +453,11 @@ TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
 TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   const auto dir = fresh_dir("sigterm");
   // A fixed camera and colour range need no first pass, so frames flow from the start; the run
-  // is far longer than the test waits.
+  // is far longer than the test waits. A fixed camera frames the box: --medium box.
   std::vector<std::string> args = {GRAINSHOCK_BINARY,
                                    "movie",
+                                   "--medium",
+                                   "box",
                                    "--particles",
                                    "3000",
                                    "--t-max",
