@@ -103,7 +103,8 @@ TEST(CliResume, StoppedBySigintAndResumed) {
 // once made this resume fail, so that the random kills above were flaky).
 TEST(CliResume, AKillAfterTheLastResultLeavesAFinishedRun) {
   const auto dir = scratch_dir("done");
-  ASSERT_EQ(grainshock("run --dim 2 --medium box --particles 2000 --t-max 300 --quiet --out " + dir.string())
+  ASSERT_EQ(grainshock("run --dim 2 --medium box --particles 2000 --t-max 300 --quiet --out " +
+                       dir.string())
                 .exit_code,
             0);
   const auto before = files_of(dir);
@@ -188,10 +189,10 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
   const std::set<std::string> not_results = {"--help",  "--config",           "--out",    "--force",
                                              "--quiet", "--checkpoint-every", "--version"};
   const std::string runs[] = {
-      "--dim 2 --medium box --particles 600 --density 0.3 --restitution 0.7 --cutoff 0.001 --speed 2 "
-      "--seed 5 --realisation 3 --t-max 60 --initial kick --kick-site centre --temperature 2 "
-      "--per-decade 7 --sample-every 5 --snapshot-times 10,20 --png --compare-elastic "
-      "--width 64 --height 48",
+      "--dim 2 --medium box --particles 600 --density 0.3 --restitution 0.7 --cutoff 0.001 "
+      "--speed 2 --seed 5 --realisation 3 --t-max 60 --initial kick --kick-site centre "
+      "--temperature 2 --per-decade 7 --sample-every 5 --snapshot-times 10,20 --png "
+      "--compare-elastic --width 64 --height 48",
       "--dim 1 --particles 300 --lattice 2 --restitution 0 --t-max 400 --sample-every 50",
       "--dim 3 --particles 1000 --initial thermal --temperature 0.5 --restitution 0.9 "
       "--t-max 2 --snapshot-times 1 --snapshot-format gsd --snapshot-particles active",

@@ -107,8 +107,9 @@ TEST(MovieCommand, MovieTomlReproducesTheMovie) {
   EXPECT_EQ(test::read_file(b / "movie.mp4"), test::read_file(a / "movie.mp4"));
 
   const auto c = fresh_dir("toml_c"), d = fresh_dir("toml_d");
-  r = test::grainshock("run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                       c.string());
+  r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      c.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = movie("--quiet --width 160 --height 120 " + (c / "snapshots/tsim_50.xyz").string() + " " +
             (c / "snapshots/tsim_100.xyz").string() + " --out " + d.string());
@@ -125,8 +126,9 @@ TEST(MovieCommand, MovieTomlReproducesTheMovie) {
 // folders moved elsewhere.
 TEST(MovieCommand, MovieTomlWorksFromAnyFolder) {
   const auto run = fresh_dir("anywhere_run"), a = fresh_dir("anywhere_a");
-  Result r = test::grainshock("run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                              run.string());
+  Result r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      run.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::grainshock("movie --quiet --width 160 --height 120 snapshots/tsim_50.xyz "
                        "snapshots/tsim_100.xyz --out " + a.string(),
@@ -156,8 +158,9 @@ TEST(MovieCommand, MovieTomlWorksFromAnyFolder) {
 // with a quote in its name) stays a string and is found again by --config.
 TEST(MovieCommand, MovieTomlKeepsFileNamesThatLookLikeNumbers) {
   const auto run = fresh_dir("names_run"), a = fresh_dir("names_a"), b = fresh_dir("names_b");
-  Result r = test::grainshock("run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                              run.string());
+  Result r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      run.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Beside movie.toml, so that the names are written bare.
   fs::create_directories(a);
@@ -369,7 +372,8 @@ TEST(MovieCommand, EveryFrameOfMultiFrameFilesInOrderOfTime) {
 // The camera turns by --orbit over the movie: the first frame is the picture at --azimuth, the
 // last the picture at --azimuth + --orbit.
 TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
-  const auto files = stored_snapshots("orbit_run", "--dim 3 --medium box --particles 3000 --seed 5 --t-max 200");
+  const auto files =
+      stored_snapshots("orbit_run", "--dim 3 --medium box --particles 3000 --seed 5 --t-max 200");
   const auto dir = fresh_dir("orbit");
   const std::string snap = files[3];
   const Result r = movie(snap + " " + snap + " " + snap +
@@ -396,8 +400,10 @@ TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
 
 TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
   const auto files = stored_snapshots("bad_run", std::string(kSmallRun) + " --t-max 200");
-  const auto three = stored_snapshots("bad_run_3d", "--dim 3 --medium box --particles 3000 --t-max 200");
-  const auto other_box = stored_snapshots("bad_run_box", "--medium box --particles 4000 --t-max 200");
+  const auto three =
+      stored_snapshots("bad_run_3d", "--dim 3 --medium box --particles 3000 --t-max 200");
+  const auto other_box =
+      stored_snapshots("bad_run_box", "--medium box --particles 4000 --t-max 200");
   const auto junk = fresh_dir("junk_input");
   fs::create_directories(junk);
   const std::string corrupt = (junk / "corrupt.xyz").string();
@@ -595,7 +601,8 @@ TEST(MovieCommand, ResumeRefusesWhatItCannotGoOnFrom) {
   EXPECT_EQ(names_in(cut), before);
 
   const auto stored = fresh_dir("resume_stored");
-  const auto files = stored_snapshots("resume_stored_run", "--medium box --particles 3000 --t-max 200");
+  const auto files =
+      stored_snapshots("resume_stored_run", "--medium box --particles 3000 --t-max 200");
   ASSERT_EQ(movie(files[0] + " " + files[1] + " --quiet --out " + stored.string()).exit_code, 0);
   const Result s = test::grainshock("resume " + stored.string());
   EXPECT_EQ(s.exit_code, 1);

@@ -263,8 +263,7 @@ bool agree(const Verdict& v) {
   return v.scalars < kScalarBound && v.speeds < kSpeedBound;
 }
 
-void expect_agreement(int dim, double r, std::int64_t particles, double t, int runs,
-                      double shift) {
+void expect_agreement(int dim, double r, std::int64_t particles, double t, int runs, double shift) {
   PhysicsConfig box;
   box.dim = dim;
   box.restitution = r;
@@ -275,8 +274,8 @@ void expect_agreement(int dim, double r, std::int64_t particles, double t, int r
   open.medium = Medium::Unbounded;
   const bool elastic = r == 1.0;
   const Ensemble a = ensemble(box, runs, t), b = ensemble(open, runs, t);
-  std::printf("%dD r = %g, t = %g, %d + %d realisations; box front %.3g of 0.6 L/2 = %.3g\n",
-              dim, r, t, runs, runs, a.reach, 0.6 * box.box() / 2);
+  std::printf("%dD r = %g, t = %g, %d + %d realisations; box front %.3g of 0.6 L/2 = %.3g\n", dim,
+              r, t, runs, runs, a.reach, 0.6 * box.box() / 2);
   const Verdict same = compare(a, b, elastic, 1.0, true);
   EXPECT_LT(a.reach, 0.6 * box.box() / 2) << "the box runs' front came near the box edge";
   EXPECT_LT(same.scalars, kScalarBound);
