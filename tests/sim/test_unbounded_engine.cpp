@@ -160,9 +160,10 @@ Ensemble ensemble(PhysicsConfig c, int runs, double t) {
     sim->run_until(t);
     const Sample s = sim->sample();
     sim->active_snapshot(active);
-    const Eigen::Vector3d centre = Eigen::Vector3d::Constant(0.5 * c.box());
-    for (const auto& x : active.position)
-      e.reach = std::max(e.reach, (x - centre).head(c.dim).norm());
+    // The kick's site; 2D positions have z = 0.
+    const double half = 0.5 * c.box();
+    const Eigen::Vector3d centre(half, half, c.dim == 3 ? half : 0.0);
+    for (const auto& x : active.position) e.reach = std::max(e.reach, (x - centre).norm());
     e.scalars.push_back({static_cast<double>(s.active), s.energy, s.radius_rms});
     e.speeds.push_back(active_speeds(active));
   }
