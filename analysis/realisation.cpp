@@ -128,7 +128,7 @@ EnsembleSpec checked(EnsembleSpec spec) {
 std::string spec_identity(const EnsembleSpec& spec) {
   PhysicsConfig p = spec.physics;
   p.realisation = 0;
-  std::string toml = to_toml(p);
+  std::string toml = physics_toml(p);
   // Drop the run comment and the realisation key: they say what is held, not what is simulated.
   std::istringstream in(toml);
   std::ostringstream out;
@@ -199,7 +199,7 @@ EnsembleSpec parse_spec(std::string_view text, const std::string& source) {
     throw UserError(source + ": unknown kick-site '" + site + "'");
   p.temperature = num("temperature");
   p.lattice = num("lattice");
-  // Written only for the unbounded medium (to_toml): older files have none.
+  // Files written before the medium existed have none, and mean the box.
   if (const toml::node* m = t.get("medium")) {
     const auto word = m->value<std::string>();
     if (!word) throw UserError(source + ": key 'medium' is not a string");

@@ -245,13 +245,20 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
                   "Which particle is kicked: random or the one nearest the centre")
       ->option_text("random|centre (random)");
   add_word_option(sub, "--medium", c.medium, parse_medium,
-                  "box: N particles in a periodic box; unbounded (kicks in 2D, 3D): the gas at "
-                  "rest made where the front arrives, N the most it may make")
-      ->option_text("box|unbounded (box)");
+                  "box: N particles in a periodic box; unbounded: the gas at rest made where the "
+                  "front arrives, N the most it may make (the default for kicks in 2D and 3D)")
+      ->option_text("box|unbounded (unbounded for kicks in 2D, 3D)");
   sub.add_option("--temperature", c.temperature, "Temperature of the thermal initial state")
       ->capture_default_str();
   sub.add_option("--lattice", c.lattice, "1D only: lattice spacing a instead of random positions")
       ->capture_default_str();
+}
+
+void apply_medium_default(CLI::App& sub, PhysicsConfig& c, bool box) {
+  CLI::Option* medium = sub.get_option("--medium");
+  if (medium->count() > 0) return;
+  c.medium = box ? Medium::Box : default_medium(c);
+  medium->default_str(to_string(c.medium));
 }
 
 CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bool& quiet) {

@@ -40,6 +40,10 @@ CLI::Validator png_name();
 
 // The physics flags shared by run, ensemble and movie.
 void add_physics_options(CLI::App& sub, PhysicsConfig& c);
+// --medium when neither the command line nor --config gives it: default_medium() of the physics
+// given, or the box if `box`. Call once every flag is read; it becomes the option's default, so
+// that the files settings_toml() writes state it.
+void apply_medium_default(CLI::App& sub, PhysicsConfig& c, bool box = false);
 
 // --out DIR, --force and --quiet of every command that writes a folder; returns --out so a
 // command without a default folder can make it required.

@@ -50,7 +50,8 @@ void add_ensemble_command(CLI::App& app) {
       "same bytes as an uninterrupted run. Under mpirun -n K the realisations are split over K "
       "ranks of --threads each; rank 0 writes and prints. Results do not depend on K, --threads "
       "or resumes.");
-  sub->callback([opt] {
+  sub->callback([opt, sub] {
+    apply_medium_default(*sub, opt->physics);
     opt->progress = terminal_progress(opt->quiet);
     const int rc = finish_ensemble_command(jobs::run_ensemble_job(*opt));
     if (rc != 0) throw Exit{rc};

@@ -181,6 +181,7 @@ void add_movie_command(CLI::App& app) {
     }
     if (opt->movie.read.dt > 0 || opt->movie.read.unwrap)
       throw UsageError("--dt and --unwrap read stored snapshots; a simulated movie has none");
+    apply_medium_default(*sub, opt->physics);
     // Everything typed is checked before the folder is made or anything runs.
     validate(opt->physics);
     check_front_movie(opt->physics, opt->movie);

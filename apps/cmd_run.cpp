@@ -29,13 +29,15 @@ void add_run_command(CLI::App& app) {
   sub->footer(
       "Unless one of --t-max, --snapshot-times, --png, --compare-elastic or --movie is given "
       "(on the command line or in --config), runs the paper's Fig. 1 job with the physics "
-      "given (defaults: 2.5e5 discs, r = 0.1): t-max = paper time 50000, snapshots and pictures "
+      "given (defaults: the paper's box of 2.5e5 discs, r = 0.1; any other kick in 2D or 3D "
+      "runs in --medium unbounded unless told): t-max = paper time 50000, snapshots and pictures "
       "at paper times 5000, 10000, 20000, 50000, their overlay, the elastic comparison and a "
       "movie of the front. So `--seed 2` is the Fig. 1 job with seed 2. DIR/run.toml holds "
       "every setting that shapes the results: `grainshock run --config DIR/run.toml --out NEW` "
       "writes the same files.");
   sub->callback([opt, sub] {
-    apply_fig1_rule(*sub, *opt);
+    // The Fig. 1 job is the paper's box of 2.5e5 discs, framed on the box, unless --medium says.
+    apply_medium_default(*sub, opt->plan.physics, apply_fig1_rule(*sub, *opt));
     opt->progress = terminal_progress(opt->quiet);
     if (run_job(*opt, false).stopped) throw Exit{kExitInterrupted};
   });

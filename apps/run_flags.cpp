@@ -76,10 +76,11 @@ void add_run_flags(CLI::App& sub, RunOptions& o) {
   sub.add_option("--height", o.height, "Height of the pictures in pixels")->capture_default_str();
 }
 
-void apply_fig1_rule(const CLI::App& sub, RunOptions& o) {
+bool apply_fig1_rule(const CLI::App& sub, RunOptions& o) {
   for (const char* name : {"--t-max", "--snapshot-times", "--png", "--compare-elastic", "--movie"})
-    if (sub.get_option(name)->count() > 0) return;
+    if (sub.get_option(name)->count() > 0) return false;
   use_fig1_job(o);
+  return true;
 }
 
 RunOptions read_run_file(const std::filesystem::path& file) {
@@ -95,6 +96,8 @@ RunOptions read_run_file(const std::filesystem::path& file) {
     throw UserError(file.string() + ": " + e.what());
   }
   apply_fig1_rule(*sub, o);
+  // No --medium default here: run.toml states the medium, and one written before the medium
+  // existed has no key and ran in the box, PhysicsConfig's own default.
   return o;
 }
 

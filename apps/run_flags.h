@@ -15,7 +15,7 @@ void add_run_flags(CLI::App& sub, RunOptions& o);
 // The rule for the Fig. 1 job, after parsing: unless one of the output flags (--t-max,
 // --snapshot-times, --png, --compare-elastic, --movie) was given, on the command line or in
 // --config, the run is the Fig. 1 job for the physics given (jobs::use_fig1_job).
-void apply_fig1_rule(const CLI::App& sub, RunOptions& o);
+bool apply_fig1_rule(const CLI::App& sub, RunOptions& o);
 
 // Reads a run folder's run.toml as `run --config` would. Throws UserError naming the file.
 RunOptions read_run_file(const std::filesystem::path& file);

@@ -205,6 +205,10 @@ Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
       if (!parse_integer(value, seed) || value.starts_with('+'))
         fail(line, not_a(value, "an unsigned integer", "Seed"));
       h.info.seed = seed;
+    } else if (iequals(key, "Medium")) {
+      if (value != "box" && value != "unbounded")
+        fail(line, not_a(value, "box or unbounded", "Medium"));
+      h.info.unbounded = value == "unbounded";
     }
   }
   h.info.has_time = time_given;
@@ -609,6 +613,7 @@ std::pair<std::string, std::string> xyz_pieces(const Snapshot& s, XyzFlavour fla
   opt("Cutoff", s.info.cutoff);
   opt("Speed", s.info.speed);
   if (s.info.seed) head += " Seed=" + std::to_string(*s.info.seed);
+  if (s.info.unbounded) head += " Medium=unbounded";
   head += '\n';
 
   // Formatting the numbers is the cost: two threads format halves of the particles (the machine

@@ -218,6 +218,9 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   m.first_name = m.frames.name(0);
   m.first_dim = s.info.dim;
   m.first_box = s.info.box;
+  if (!p.plan.follow && s.info.unbounded)
+    throw UserError("--camera fixed: " + m.first_name +
+                    " is of the unbounded medium, which has no box to frame; use --camera follow");
   p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
   if (p.plan.style.field == render::Field::Column) p.plan.style.column = o.colour_by;
   p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);

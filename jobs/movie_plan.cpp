@@ -52,8 +52,8 @@ MoviePlan make_live_plan(const PhysicsConfig& physics, const FrontMovieOptions& 
   // thousands of diameters wide that is almost all never made.
   if (physics.unbounded() && !p.follow)
     throw UsageError(
-        "--camera fixed: frames the whole box, and --medium unbounded has none; "
-        "use --camera follow");
+        "--camera fixed: frames the whole box, and --medium unbounded (the default for kicks) "
+        "has none; use --camera follow, or --medium box");
   if (p.field_auto)
     p.style.field =
         physics.initial == Initial::Kick ? render::Field::ScaledSpeed : render::Field::Speed;

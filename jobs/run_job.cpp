@@ -162,7 +162,9 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
     sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
     if (stop_requested()) return std::nullopt;
   }
-  return sim->snapshot();
+  Snapshot s = sim->snapshot();
+  s.info.unbounded = c.unbounded();
+  return s;
 }
 
 void write_elastic_comparison(const fs::path& dir, const RunOptions& o, const Snapshot& s) {
@@ -207,7 +209,7 @@ std::string run_toml(const RunOptions& o) {
   std::ostringstream t;
   t << "# grainshock run: every setting that shapes the results.\n"
     << "# Again: grainshock run --config run.toml --out NEW; continue: grainshock resume DIR\n"
-    << to_toml(o.plan.physics) << "per-decade = " << o.plan.per_decade << "\n"
+    << physics_toml(o.plan.physics) << "per-decade = " << o.plan.per_decade << "\n"
     << "sample-every = " << format_double(o.plan.sample_every) << "\n"
     << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
     << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
@@ -292,7 +294,8 @@ RunResult run_job(const RunOptions& o, bool resume) {
     stopped = !loop->run();
     progress.done();
     if (stopped) {  // a look at the data may want the moment too; a resume removes it
-      const Snapshot s = loop->simulation().snapshot();
+      Snapshot s = loop->simulation().snapshot();
+      s.info.unbounded = o.plan.physics.unbounded();
       write_snapshot(
           (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
           o.plan.snapshots);

@@ -118,7 +118,13 @@ std::unique_ptr<RunLoop> RunLoop::resume(const RunPlan& plan, const std::filesys
   const std::filesystem::path file =
       checkpoint_to_resume(checkpoint_path(dir), previous_checkpoint_path(dir), "checkpoint");
   CheckpointReader in(file);
-  if (in.string() != spec)
+  // A box run's run.toml states its medium since kicks default to the unbounded one; the
+  // checkpoint of a box run made before holds the same lines without it, and resumes.
+  const std::string saved = in.string(), box_line = "medium = \"box\"\n";
+  const std::size_t at = spec.find(box_line);
+  const bool before_default =
+      at != std::string::npos && saved == std::string(spec).erase(at, box_line.size());
+  if (saved != spec && !before_default)
     throw UserError("the checkpoint '" + file.string() + "' is of another run than '" +
                     (dir / "run.toml").string() + "' describes");
   const auto next = in.value<std::uint64_t>(), next_snap = in.value<std::uint64_t>();
@@ -205,6 +211,7 @@ bool RunLoop::run(double until) {
         std::abs(snaps_[next_snap_] - t) <= 1e-12 * std::max(1.0, t)) {
       const double s0 = wall_now();
       sim_->snapshot(snapshot_);
+      snapshot_.info.unbounded = plan_.physics.unbounded();
       write_snapshot((dir_ / "snapshots" / snapshot_name(t, plan_.snapshots.format)).string(),
                      snapshot_, plan_.snapshots, kept_);
       ++next_snap_;

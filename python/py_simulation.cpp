@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -71,7 +72,7 @@ class PySimulation {
 PhysicsConfig physics(int dim, pb::object particles, double density, double restitution,
                       double cutoff, double speed, std::uint64_t seed, std::uint64_t realisation,
                       const std::string& initial, const std::string& kick_site, double temperature,
-                      double lattice, double t_max, const std::string& medium) {
+                      double lattice, double t_max, const std::optional<std::string>& medium) {
   PhysicsConfig c;
   c.dim = dim;
   // 2e6 is accepted as the flag accepts it, when it is a whole number.
@@ -91,7 +92,8 @@ PhysicsConfig physics(int dim, pb::object particles, double density, double rest
   c.temperature = temperature;
   c.lattice = lattice;
   c.t_max = t_max;
-  c.medium = parse_medium(medium);
+  // None: the command line's default, unbounded for kicks in 2D and 3D (default_medium).
+  c.medium = medium ? parse_medium(*medium) : default_medium(c);
   validate(c);
   check_memory(c);
   return c;
@@ -117,7 +119,7 @@ PhysicsConfig physics(const pb::kwargs& kw) {
                  get("realisation", d.realisation), get("initial", std::string("kick")),
                  get("kick_site", std::string("random")), get("temperature", d.temperature),
                  get("lattice", d.lattice), get("t_max", d.t_max),
-                 get("medium", std::string(to_string(d.medium))));
+                 get("medium", std::optional<std::string>()));
 }
 
 namespace {
@@ -166,8 +168,10 @@ void bind_simulation(pb::module_& m) {
 
 The arguments are the physics flags of `grainshock run` with the same names (dashes become
 underscores), defaults (the paper's) and checks: a bad value raises ValueError with the command
-line's one-line message. The initial state is made at once (random sequential addition), so a
-large gas takes a moment.
+line's one-line message. medium=None is the command's default: "unbounded" for kicks in 2D and
+3D (the gas at rest made where the front arrives, `particles` the most it may make), "box"
+otherwise; medium="box" gives the periodic box of `particles`, made at once (random sequential
+addition), so a large box takes a moment.
 
     sim = grainshock.Simulation(dim=2, particles=20000, restitution=0.1, seed=3)
     sim.run_until(1000)
@@ -176,7 +180,7 @@ large gas takes a moment.
                        double cutoff, double speed, std::uint64_t seed, std::uint64_t realisation,
                        const std::string& initial, const std::string& kick_site,
                        double temperature, double lattice, double t_max,
-                       const std::string& medium) {
+                       const std::optional<std::string>& medium) {
              const PhysicsConfig c = physics(dim, particles, density, restitution, cutoff, speed,
                                              seed, realisation, initial, kick_site, temperature,
                                              lattice, t_max, medium);
@@ -193,7 +197,7 @@ large gas takes a moment.
            pb::arg("seed") = def.seed, pb::arg("realisation") = def.realisation,
            pb::arg("initial") = "kick", pb::arg("kick_site") = "random",
            pb::arg("temperature") = def.temperature, pb::arg("lattice") = def.lattice,
-           pb::arg("t_max") = def.t_max, pb::arg("medium") = "box")
+           pb::arg("t_max") = def.t_max, pb::arg("medium") = pb::none())
       .def("run_until", &PySimulation::run_until, pb::arg("t"),
            R"(Processes every event up to time t (units of diameter / v0) and leaves the clock there.
 
@@ -210,6 +214,7 @@ chunks of events, leaving a valid simulation at the time reached.)")
                 s.sim().active_snapshot(*snap);
               else
                 s.sim().snapshot(*snap);
+              snap->info.unbounded = s.sim().config().unbounded();
             }
             return snap;
           },

@@ -43,6 +43,14 @@ void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& 
                           const std::string& first_file) {
   Style& st = c.style;
   st.inset = c.inset || (!c.no_inset && snaps.front()->info.seed.has_value());
+  // The unbounded medium's box is the engine's addressable region, 4 times the side of the box
+  // of its --particles and almost all of it never made: framed whole, the band is a dot.
+  if (c.view.framing == Framing::Box)
+    for (const Snapshot* s : snaps)
+      if (s->info.unbounded)
+        throw UserError("--framing box: " + (snaps.size() == 1 ? first_file : "a snapshot") +
+                        " is of the unbounded medium, which has no box (its Lattice is only the "
+                        "region the engine addresses); use --framing fit");
   if (snaps.size() == 1) {
     st.field = choose_field(c.colour_by, *snaps.front(), first_file);
     if (st.field == Field::Column) st.column = c.colour_by;

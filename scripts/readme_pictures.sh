@@ -16,7 +16,7 @@ trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 
 # The Fig. 1 job's physics and times (simulation time is twice the paper's at n = 0.25).
-"$gs" run --quiet --particles 250000 --restitution 0.1 --seed 1 --t-max 100000 \
+"$gs" run --quiet --medium box --particles 250000 --restitution 0.1 --seed 1 --t-max 100000 \
   --snapshot-times 10000,20000,40000,100000 --out "$work/run"
 snaps=("$work"/run/snapshots/tsim_{10000,20000,40000,100000}.xyz)
 "$gs" render "${snaps[@]}" --width 640 --height 320 --compression 9 --out "$out/fig1.png"

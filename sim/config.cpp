@@ -160,6 +160,11 @@ void validate(const PhysicsConfig& c) {
   check_memory(c, 0);
 }
 
+Medium default_medium(const PhysicsConfig& c) {
+  const bool kick = c.initial == Initial::Kick && c.dim > 1 && c.lattice == 0.0;
+  return kick ? Medium::Unbounded : Medium::Box;
+}
+
 double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
   const double d = c.dim;
   // The engine's records (sim/engine.h) and queue entry, the initial state with the copies that
@@ -239,6 +244,10 @@ std::string to_toml(const PhysicsConfig& c) {
   // those of the runs made before the medium existed, and resume.
   if (c.unbounded()) o << "medium = \"" << to_string(c.medium) << "\"\n";
   return o.str();
+}
+
+std::string physics_toml(const PhysicsConfig& c) {
+  return c.unbounded() ? to_toml(c) : to_toml(c) + "medium = \"box\"\n";
 }
 
 }  // namespace gs

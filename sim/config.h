@@ -9,7 +9,9 @@ namespace gs {
 enum class Initial { Kick, Thermal };
 enum class KickSite { Random, Centre };
 // Box: the periodic box of N particles. Unbounded: a kick's gas at rest made cell by cell where
-// the front arrives (sim/unbounded_medium.h), N then caps the particles made.
+// the front arrives (sim/unbounded_medium.h), N then caps the particles made. The commands and
+// Python take default_medium() when no medium is given; the struct's own default stays the box,
+// the paper's system and what every file written before the medium existed means.
 enum class Medium { Box, Unbounded };
 
 struct PhysicsConfig {
@@ -41,6 +43,11 @@ struct PhysicsConfig {
 
 // Throws UserError naming the offending input (flag name) if the configuration is impossible.
 void validate(const PhysicsConfig& c);
+
+// The medium of a run that names none: unbounded for a kick in 2D and 3D off a lattice, whose
+// front then never meets its own periodic images (ensembles agree with box runs whose front is
+// far from the edge: tests/sim/test_unbounded_engine.cpp); the box for a thermal gas and in 1D.
+Medium default_medium(const PhysicsConfig& c);
 
 // The neighbour grid has at most this many cells per particle (or kMinCellLimit, whichever is
 // more): a very dilute gas would otherwise spend gigabytes on empty cells.
@@ -81,7 +88,11 @@ double max_thermal_density(int dim, std::int64_t n);
 
 // TOML lines, one key per physics flag, readable back with --config; the files that hold them
 // (run.toml, movie.toml, ensemble.toml) add their own keys and a comment saying how to rerun.
+// The box is left unstated, as in checkpoints written before the medium existed (their physics
+// lines must read the same to resume); physics_toml() states it, for the files read back with
+// --config, where a missing key means default_medium().
 std::string to_toml(const PhysicsConfig& c);
+std::string physics_toml(const PhysicsConfig& c);
 
 const char* to_string(Initial i);
 const char* to_string(KickSite k);

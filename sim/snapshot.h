@@ -28,6 +28,10 @@ struct SnapshotInfo {
   std::optional<std::int64_t> step;  // time step of LAMMPS and HOOMD files; collisions for ours
   std::optional<double> density, restitution, cutoff, speed;
   std::optional<std::uint64_t> seed;
+  // A snapshot of the unbounded medium: `box` is only the region the engine addresses, almost all
+  // of it never made, so there is no box to frame. Set by whoever takes it from a Simulation of
+  // that medium (the engine does not say), written and read as the XYZ key Medium=unbounded.
+  bool unbounded = false;
 
   // A periodic cube of this side in the first `dim` axes (set `dim` first).
   void set_cubic_box(double side) {

@@ -27,7 +27,8 @@ using test::spawn_grainshock;
 namespace fs = std::filesystem;
 
 // Small enough for a fraction of a second per realisation, long enough for a band to form.
-const std::string kPhysics = "--particles 6000 --restitution 0.5 --t-max 1500 --quiet";
+// A box: these tests read the folders, not the medium (tests/sim/test_unbounded_engine.cpp).
+const std::string kPhysics = "--medium box --particles 6000 --restitution 0.5 --t-max 1500 --quiet";
 const std::vector<std::string> kFiles = {"ensemble.toml", "timeseries_mean.csv",
                                          "distributions_mean.csv", "snapshot_scalars_mean.csv",
                                          "summary.json"};
@@ -141,11 +142,12 @@ TEST(CliEnsemble, BadInputIsRefusedInOneLineAndWritesNothing) {
       grainshock("ensemble " + kPhysics + " --realisations 2 --per-realisation --out " + a.string())
           .exit_code,
       0);
-  ASSERT_EQ(grainshock("ensemble --particles 6000 --restitution 0.8 --t-max 1500 --quiet "
-                       "--realisation 2 --realisations 2 --per-realisation --out " +
-                       b.string())
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      grainshock("ensemble --medium box --particles 6000 --restitution 0.8 --t-max 1500 --quiet "
+                 "--realisation 2 --realisations 2 --per-realisation --out " +
+                 b.string())
+          .exit_code,
+      0);
   expect_refused("merge " + a.string() + " " + b.string() + to, out, "");
   // The same realisations twice, and a folder without per-realisation data.
   expect_refused("merge " + a.string() + " " + a.string() + to, out, "");
@@ -219,7 +221,7 @@ std::size_t finished_count(const fs::path& rdir) {
 }
 
 // Slower realisations than kPhysics (about 0.15 s each), so that a kill lands between them.
-const std::string kSlow = "--particles 20000 --restitution 0.5 --t-max 20000 --quiet";
+const std::string kSlow = "--medium box --particles 20000 --restitution 0.5 --t-max 20000 --quiet";
 
 TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
   const auto whole = scratch_dir("whole"), killed = scratch_dir("killed"),

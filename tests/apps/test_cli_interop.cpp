@@ -43,7 +43,7 @@ std::map<std::string, std::string> text_of(const fs::path& png) {
 // A small kick with two snapshot times, its pictures and a trajectory of each format.
 fs::path small_run(int dim, const std::string& extra) {
   const fs::path dir = scratch_dir("run" + std::to_string(dim));
-  const auto r = grainshock("run --dim " + std::to_string(dim) + " --particles " +
+  const auto r = grainshock("run --medium box --dim " + std::to_string(dim) + " --particles " +
                             (dim == 2 ? "3000" : "4000") +
                             " --restitution 0.5 --t-max 20 --snapshot-times 10,20 --png "
                             "--width 480 --height 270 --quiet " +

@@ -51,13 +51,14 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
   std::mt19937 random(seed);
   SCOPED_TRACE("random seed " + std::to_string(seed));
   const std::string cases[] = {
-      "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times 100,10000",
-      "--dim 3 --particles 20000 --t-max 20000 --restitution 0.3 --snapshot-times 500",
+      "--dim 2 --medium box --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times "
+      "100,10000",
+      "--dim 3 --medium box --particles 20000 --t-max 20000 --restitution 0.3 --snapshot-times 500",
       "--dim 2 --particles 3000 --t-max 300 --initial thermal --restitution 0.95",
       "--dim 3 --particles 3000 --t-max 150 --initial thermal --restitution 0.95 --per-decade 40",
       // One GSD file per snapshot time, whose bytes depend only on the state written.
-      "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times 100,10000 "
-      "--snapshot-format gsd --snapshot-particles active",
+      "--dim 2 --medium box --particles 20000 --t-max 60000 --restitution 0.5 --snapshot-times "
+      "100,10000 --snapshot-format gsd --snapshot-particles active",
       // The unbounded medium: its checkpoints hold the cells made so far.
       "--dim 2 --medium unbounded --particles 40000 --t-max 60000 --restitution 0.5 "
       "--snapshot-times 100,10000",
@@ -77,7 +78,8 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
 
 // Ctrl-C writes a checkpoint; the stopped run says so, and resumes to the same files.
 TEST(CliResume, StoppedBySigintAndResumed) {
-  const std::string c = "--dim 2 --particles 20000 --t-max 60000 --restitution 0.5 --quiet";
+  const std::string c =
+      "--dim 2 --medium box --particles 20000 --t-max 60000 --restitution 0.5 --quiet";
   const auto ref = scratch_dir("ref"), cut = scratch_dir("cut");
   ASSERT_EQ(grainshock("run " + c + " --out " + ref.string()).exit_code, 0);
   const pid_t pid = spawn_grainshock("run " + c + " --out " + cut.string());
@@ -101,7 +103,8 @@ TEST(CliResume, StoppedBySigintAndResumed) {
 // once made this resume fail, so that the random kills above were flaky).
 TEST(CliResume, AKillAfterTheLastResultLeavesAFinishedRun) {
   const auto dir = scratch_dir("done");
-  ASSERT_EQ(grainshock("run --dim 2 --particles 2000 --t-max 300 --quiet --out " + dir.string())
+  ASSERT_EQ(grainshock("run --dim 2 --medium box --particles 2000 --t-max 300 --quiet --out " +
+                       dir.string())
                 .exit_code,
             0);
   const auto before = files_of(dir);
@@ -116,7 +119,7 @@ TEST(CliResume, AKillAfterTheLastResultLeavesAFinishedRun) {
 
 // Refusals: one line, exit 1, and the folder exactly as it was.
 TEST(CliResume, WhatCannotBeResumedIsRefused) {
-  const std::string c = "--dim 2 --particles 2000 --quiet";
+  const std::string c = "--dim 2 --medium box --particles 2000 --quiet";
   const auto done = scratch_dir("done"), cut = scratch_dir("cut"), empty = scratch_dir("empty");
   ASSERT_EQ(grainshock("run " + c + " --t-max 300 --out " + done.string()).exit_code, 0);
   fs::create_directories(empty);
@@ -186,14 +189,15 @@ TEST(CliRunFile, EveryFlagRoundTrips) {
   const std::set<std::string> not_results = {"--help",  "--config",           "--out",    "--force",
                                              "--quiet", "--checkpoint-every", "--version"};
   const std::string runs[] = {
-      "--dim 2 --particles 600 --density 0.3 --restitution 0.7 --cutoff 0.001 --speed 2 "
-      "--seed 5 --realisation 3 --t-max 60 --initial kick --kick-site centre --temperature 2 "
-      "--per-decade 7 --sample-every 5 --snapshot-times 10,20 --png --compare-elastic "
-      "--width 64 --height 48",
+      "--dim 2 --medium box --particles 600 --density 0.3 --restitution 0.7 --cutoff 0.001 "
+      "--speed 2 --seed 5 --realisation 3 --t-max 60 --initial kick --kick-site centre "
+      "--temperature 2 --per-decade 7 --sample-every 5 --snapshot-times 10,20 --png "
+      "--compare-elastic --width 64 --height 48",
       "--dim 1 --particles 300 --lattice 2 --restitution 0 --t-max 400 --sample-every 50",
       "--dim 3 --particles 1000 --initial thermal --temperature 0.5 --restitution 0.9 "
       "--t-max 2 --snapshot-times 1 --snapshot-format gsd --snapshot-particles active",
-      "--dim 2 --particles 400 --t-max 30 --snapshot-times 10 --snapshot-format ovito-xyz --png "
+      "--dim 2 --medium box --particles 400 --t-max 30 --snapshot-times 10 --snapshot-format "
+      "ovito-xyz --png "
       "--width 32 --height 32",
       "--dim 3 --medium unbounded --particles 20000 --t-max 50 --restitution 0.5",
   };

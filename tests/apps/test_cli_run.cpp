@@ -17,7 +17,8 @@ using test::read_file;
 using test::scratch_dir;
 namespace fs = std::filesystem;
 
-const std::string kSmall = "--particles 3000 --t-max 300 --restitution 0.5 --quiet";
+// A box of 3000 discs: these tests read the box's N back (summary.json, snapshots).
+const std::string kSmall = "--medium box --particles 3000 --t-max 300 --restitution 0.5 --quiet";
 
 TEST(CliRun, WritesTheRunFolder) {
   const auto dir = scratch_dir("run");
@@ -73,6 +74,30 @@ TEST(CliRun, UnboundedMediumRun) {
   EXPECT_LT(s.size(), 20000u);
   EXPECT_TRUE(fs::exists(dir / "frames/tsim_300.png"));
   EXPECT_NE(read_file(dir / "run.toml").find("medium = \"unbounded\""), std::string::npos);
+  // "The whole box" is the addressable region: refused in one line; the default frames the band.
+  const std::string snap = (dir / "snapshots/tsim_300.xyz").string();
+  EXPECT_TRUE(s.info.unbounded);
+  r = grainshock("render " + snap + " --framing box --out " + (dir / "box.png").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--framing box: " + snap + " is of the unbounded medium"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "box.png"));
+  EXPECT_EQ(grainshock("render " + snap + " --out " + (dir / "fit.png").string()).exit_code, 0);
+  // A kick names no medium: unbounded, the same bytes; a thermal start keeps the box.
+  const auto implicit = scratch_dir("unbounded_by_default");
+  ASSERT_EQ(grainshock("run --particles 20000 --t-max 300 --restitution 0.5 --quiet --out " +
+                       implicit.string())
+                .exit_code,
+            0);
+  EXPECT_EQ(read_file(implicit / "timeseries.csv"), read_file(dir / "timeseries.csv"));
+  EXPECT_NE(read_file(implicit / "run.toml").find("medium = \"unbounded\""), std::string::npos);
+  const auto thermal = scratch_dir("thermal_box");
+  ASSERT_EQ(grainshock("run --initial thermal --particles 400 --t-max 1 --quiet --out " +
+                       thermal.string())
+                .exit_code,
+            0);
+  EXPECT_NE(read_file(thermal / "run.toml").find("medium = \"box\""), std::string::npos);
   r = grainshock("run --medium unbounded --particles 500 --t-max 3000 --quiet --out " +
                  scratch_dir("unbounded_full").string());
   EXPECT_EQ(r.exit_code, 1);
@@ -116,6 +141,8 @@ TEST(CliRun, NoPhysicsFlagsRunTheFig1Job) {
         "frames/tsim_100000.png", "frames/overlay.png", "frames/elastic_tsim_50000.png",
         "snapshots/tsim_100000.xyz", "movie.mp4", "timeseries.csv"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
+  // The paper's box, stated in run.toml so that --config gives it again.
+  EXPECT_NE(read_file(dir / "run.toml").find("medium = \"box\""), std::string::npos);
   const Snapshot s = read_snapshot((dir / "snapshots/tsim_100000.xyz").string());
   EXPECT_EQ(s.size(), 250000u);
   EXPECT_EQ(s.info.restitution.value_or(-1), 0.1);

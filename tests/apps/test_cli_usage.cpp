@@ -95,7 +95,7 @@ TEST(CliUsage, ExitCodeTable) {
   const fs::path dir = scratch_dir("codes");
   fs::create_directories(dir / "full");
   std::ofstream(dir / "full" / "old.txt") << "earlier results\n";
-  const std::string small = "--dim 2 --particles 200 --t-max 20 --quiet --out ";
+  const std::string small = "--dim 2 --medium box --particles 200 --t-max 20 --quiet --out ";
   struct Case {
     std::string args;
     int code;
@@ -134,8 +134,8 @@ TEST(CliUsage, ExitCodeTable) {
   // Interrupted: 130 for SIGINT and SIGTERM alike, with the files written so far complete.
   for (int sig : {SIGINT, SIGTERM}) {
     const fs::path out = dir / ("stopped_" + std::to_string(sig));
-    const pid_t pid =
-        spawn_grainshock("run --dim 3 --particles 20000 --t-max 1e7 --quiet --out " + out.string());
+    const pid_t pid = spawn_grainshock(
+        "run --dim 3 --medium box --particles 20000 --t-max 1e7 --quiet --out " + out.string());
     EXPECT_EQ(interrupt_when(pid, out / "timeseries.csv", sig), 130) << "signal " << sig;
     EXPECT_NE(read_file(out / "summary.json").find("\"interrupted\": true"), std::string::npos)
         << read_file(out / "summary.json");
@@ -147,7 +147,7 @@ TEST(CliUsage, ExitCodeTable) {
 // end alike.
 TEST(CliUsage, OutOfRangeValuesExitTwoInEverySubcommand) {
   const fs::path dir = scratch_dir("range");
-  const std::string small = "--dim 2 --particles 200 --t-max 20 --quiet";
+  const std::string small = "--dim 2 --medium box --particles 200 --t-max 20 --quiet";
   const auto made = grainshock("run " + small + " --out " + (dir / "ok").string());
   ASSERT_EQ(made.exit_code, 0) << made.err;
   const std::string snap = (dir / "ok" / "snapshots" / "tsim_20.xyz").string();
@@ -196,7 +196,7 @@ TEST(CliUsage, InterruptedRunNamesItsFolderToResume) {
   fs::create_directories(dir);
   const fs::path out = dir / "run", err = dir / "err.txt";
   const pid_t pid = spawn_grainshock(
-      "run --dim 3 --particles 20000 --t-max 1e7 --out " + out.string(), err.string());
+      "run --dim 3 --medium box --particles 20000 --t-max 1e7 --out " + out.string(), err.string());
   EXPECT_EQ(interrupt_when(pid, out / "timeseries.csv", SIGINT), 130);
   const std::string text = read_file(err);
   EXPECT_NE(text.find("(continue with: grainshock resume " + out.string() + ")"),
@@ -208,9 +208,10 @@ TEST(CliUsage, InterruptedRunNamesItsFolderToResume) {
 // one; a .gz cut short, or a frame the file lacks, is one line naming it (exit 1).
 TEST(CliUsage, NegativeFramesAndGzipSnapshots) {
   const fs::path dir = scratch_dir("frames");
-  const auto run = grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet "
-                              "--trajectory all.xyz --out " +
-                              dir.string());
+  const auto run = grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet "
+      "--trajectory all.xyz --out " +
+      dir.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string all = (dir / "all.xyz").string();
   auto render = [&](const std::string& args, const std::string& png) {
@@ -253,7 +254,8 @@ TEST(CliUsage, ProgressLineWithoutTerminal) {
   fs::create_directories(dir);
   const fs::path err = dir / "stderr.txt";
   const pid_t pid = spawn_grainshock(
-      "run --dim 3 --particles 20000 --t-max 1e7 --out " + (dir / "run").string(), err.string());
+      "run --dim 3 --medium box --particles 20000 --t-max 1e7 --out " + (dir / "run").string(),
+      err.string());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (read_file(err).find(" elapsed\n") == std::string::npos &&
          std::chrono::steady_clock::now() < deadline)

@@ -17,7 +17,7 @@ def run_command(*args):
 
 @pytest.fixture
 def small_sim():
-    sim = gs.Simulation(dim=2, particles=4000, restitution=0.5, seed=7)
+    sim = gs.Simulation(dim=2, particles=4000, restitution=0.5, seed=7, medium="box")
     sim.run_until(60)
     return sim
 

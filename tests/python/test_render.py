@@ -9,8 +9,9 @@ from conftest import run_command
 @pytest.fixture(scope="module")
 def snapshot_file(tmp_path_factory):
     out = tmp_path_factory.mktemp("render") / "r"
-    cli = run_command("run", "--particles", 6000, "--restitution", 0.3, "--seed", 9, "--t-max", 150,
-                      "--snapshot-times", 150, "--out", out, "--quiet")
+    # A box: --framing box is among the cases (an unbounded run's snapshot has no box to frame).
+    cli = run_command("run", "--medium", "box", "--particles", 6000, "--restitution", 0.3,
+                      "--seed", 9, "--t-max", 150, "--snapshot-times", 150, "--out", out, "--quiet")
     assert cli.returncode == 0, cli.stderr
     return next((out / "snapshots").iterdir())
 

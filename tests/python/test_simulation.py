@@ -16,6 +16,12 @@ def test_defaults_are_the_flags():
     assert (c["dim"], c["density"], c["restitution"], c["cutoff"], c["speed"], c["seed"]) == (
         2, 0.25, 0.1, 1e-4, 1.0, 1)
     assert c["initial"] == "kick" and c["kick_site"] == "random"
+    # The command's default medium: unbounded for kicks in 2D and 3D, the box otherwise.
+    assert c["medium"] == "unbounded"
+    assert gs.Simulation(particles=500, dim=3).config["medium"] == "unbounded"
+    assert gs.Simulation(particles=500, initial="thermal").config["medium"] == "box"
+    assert gs.Simulation(particles=500, dim=1).config["medium"] == "box"
+    assert gs.Simulation(particles=500, medium="box").config["medium"] == "box"
 
 
 @pytest.mark.parametrize("flag,value", [("restitution", 2.0), ("density", -1.0), ("dim", 4),
@@ -40,6 +46,9 @@ def test_unbounded_medium_holds_what_it_made(tmp_path):
     sim.run_until(200)
     made = sim.snapshot(active_only=False)
     assert sim.sample()["active"] < len(made) < 20000
+    # Its box is only the region the engine addresses: framing it whole is refused.
+    with pytest.raises(ValueError, match="--framing box: the snapshot is of the unbounded medium"):
+        gs.render(made, framing="box", width=64, height=64)
     sim.save(tmp_path / "sim.bin")
     again = gs.Simulation.load(tmp_path / "sim.bin")
     sim.run_until(400)
@@ -108,7 +117,8 @@ def test_a_call_from_another_thread_while_running_is_refused():
 
 
 def test_ctrl_c_stops_between_chunks_and_leaves_a_valid_simulation():
-    sim = gs.Simulation(particles=20000, restitution=0.5, seed=2)
+    # A box: the unbounded medium would stop at its cap of made particles before the timer.
+    sim = gs.Simulation(particles=20000, restitution=0.5, seed=2, medium="box")
     timer = threading.Timer(0.3, _thread.interrupt_main)
     timer.start()
     with pytest.raises(KeyboardInterrupt):

@@ -57,7 +57,7 @@ double png_time(const fs::path& png) {
   return -1;
 }
 
-constexpr const char* kSmallRun = "--particles 3000 --seed 7 --quiet";
+constexpr const char* kSmallRun = "--medium box --particles 3000 --seed 7 --quiet";
 
 TEST(MovieCommand, WritesTheFramesAskedForAndMatchesThePngRenderer) {
   const auto dir = fresh_dir("basic");
@@ -107,8 +107,9 @@ TEST(MovieCommand, MovieTomlReproducesTheMovie) {
   EXPECT_EQ(test::read_file(b / "movie.mp4"), test::read_file(a / "movie.mp4"));
 
   const auto c = fresh_dir("toml_c"), d = fresh_dir("toml_d");
-  r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                       c.string());
+  r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      c.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = movie("--quiet --width 160 --height 120 " + (c / "snapshots/tsim_50.xyz").string() + " " +
             (c / "snapshots/tsim_100.xyz").string() + " --out " + d.string());
@@ -125,8 +126,9 @@ TEST(MovieCommand, MovieTomlReproducesTheMovie) {
 // folders moved elsewhere.
 TEST(MovieCommand, MovieTomlWorksFromAnyFolder) {
   const auto run = fresh_dir("anywhere_run"), a = fresh_dir("anywhere_a");
-  Result r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                              run.string());
+  Result r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      run.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::grainshock("movie --quiet --width 160 --height 120 snapshots/tsim_50.xyz "
                        "snapshots/tsim_100.xyz --out " + a.string(),
@@ -156,8 +158,9 @@ TEST(MovieCommand, MovieTomlWorksFromAnyFolder) {
 // with a quote in its name) stays a string and is found again by --config.
 TEST(MovieCommand, MovieTomlKeepsFileNamesThatLookLikeNumbers) {
   const auto run = fresh_dir("names_run"), a = fresh_dir("names_a"), b = fresh_dir("names_b");
-  Result r = test::grainshock("run --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
-                              run.string());
+  Result r = test::grainshock(
+      "run --medium box --particles 2000 --t-max 100 --snapshot-times 50 --quiet --out " +
+      run.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Beside movie.toml, so that the names are written bare.
   fs::create_directories(a);
@@ -218,7 +221,7 @@ TEST(MovieCommand, OddSizeMpeg4And3dSlab) {
 
   const auto three = fresh_dir("3d");
   const Result r3 = movie(
-      "--dim 3 --particles 3000 --t-max 60 --quiet --frames 5 --slab 6"
+      "--dim 3 --medium box --particles 3000 --t-max 60 --quiet --frames 5 --slab 6"
       " --width 160 --height 120 --out " +
       three.string());
   ASSERT_EQ(r3.exit_code, 0) << r3.err;
@@ -369,7 +372,8 @@ TEST(MovieCommand, EveryFrameOfMultiFrameFilesInOrderOfTime) {
 // The camera turns by --orbit over the movie: the first frame is the picture at --azimuth, the
 // last the picture at --azimuth + --orbit.
 TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
-  const auto files = stored_snapshots("orbit_run", "--dim 3 --particles 3000 --seed 5 --t-max 200");
+  const auto files =
+      stored_snapshots("orbit_run", "--dim 3 --medium box --particles 3000 --seed 5 --t-max 200");
   const auto dir = fresh_dir("orbit");
   const std::string snap = files[3];
   const Result r = movie(snap + " " + snap + " " + snap +
@@ -396,8 +400,10 @@ TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
 
 TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
   const auto files = stored_snapshots("bad_run", std::string(kSmallRun) + " --t-max 200");
-  const auto three = stored_snapshots("bad_run_3d", "--dim 3 --particles 3000 --t-max 200");
-  const auto other_box = stored_snapshots("bad_run_box", "--particles 4000 --t-max 200");
+  const auto three =
+      stored_snapshots("bad_run_3d", "--dim 3 --medium box --particles 3000 --t-max 200");
+  const auto other_box =
+      stored_snapshots("bad_run_box", "--medium box --particles 4000 --t-max 200");
   const auto junk = fresh_dir("junk_input");
   fs::create_directories(junk);
   const std::string corrupt = (junk / "corrupt.xyz").string();
@@ -453,9 +459,11 @@ TEST(MovieCommand, BadStoredSnapshotsAreOneLineAndLeaveNothing) {
 TEST(MovieCommand, SigtermFinishesTheMovieWithTheFramesSoFar) {
   const auto dir = fresh_dir("sigterm");
   // A fixed camera and colour range need no first pass, so frames flow from the start; the run
-  // is far longer than the test waits.
+  // is far longer than the test waits. A fixed camera frames the box: --medium box.
   std::vector<std::string> args = {GRAINSHOCK_BINARY,
                                    "movie",
+                                   "--medium",
+                                   "box",
                                    "--particles",
                                    "3000",
                                    "--t-max",
@@ -513,9 +521,9 @@ TEST(MovieCommand, KilledAtRandomMomentsAndResumedDrawsTheSameFrames) {
   std::mt19937 random(seed);
   SCOPED_TRACE("random seed " + std::to_string(seed));
   const std::string cases[] = {
-      "--particles 100000 --t-max 60000 --frames 60",
-      "--particles 100000 --t-max 60000 --frames 40 --color-by speed",  // the range pass
-      "--dim 3 --particles 60000 --t-max 10000 --frames 40 --restitution 0.5",
+      "--medium box --particles 100000 --t-max 60000 --frames 60",
+      "--medium box --particles 100000 --t-max 60000 --frames 40 --color-by speed",  // range pass
+      "--dim 3 --medium box --particles 60000 --t-max 10000 --frames 40 --restitution 0.5",
   };
   int n = 0;
   for (const std::string& c : cases) {
@@ -593,7 +601,8 @@ TEST(MovieCommand, ResumeRefusesWhatItCannotGoOnFrom) {
   EXPECT_EQ(names_in(cut), before);
 
   const auto stored = fresh_dir("resume_stored");
-  const auto files = stored_snapshots("resume_stored_run", "--particles 3000 --t-max 200");
+  const auto files =
+      stored_snapshots("resume_stored_run", "--medium box --particles 3000 --t-max 200");
   ASSERT_EQ(movie(files[0] + " " + files[1] + " --quiet --out " + stored.string()).exit_code, 0);
   const Result s = test::grainshock("resume " + stored.string());
   EXPECT_EQ(s.exit_code, 1);

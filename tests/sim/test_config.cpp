@@ -20,6 +20,25 @@ TEST(Config, BoxSideFollowsDensity) {
   EXPECT_NEAR(c.paper_time(10.0), 10.0 * std::cbrt(0.25), 1e-12);
 }
 
+// Kicks in 2D and 3D default to the unbounded medium; thermal gases, 1D and lattices keep the box.
+TEST(Config, DefaultMediumIsUnboundedForKicksIn2DAnd3D) {
+  PhysicsConfig c;
+  EXPECT_EQ(default_medium(c), Medium::Unbounded);
+  c.dim = 3;
+  EXPECT_EQ(default_medium(c), Medium::Unbounded);
+  c.initial = Initial::Thermal;
+  EXPECT_EQ(default_medium(c), Medium::Box);
+  c = PhysicsConfig{};
+  c.dim = 1;
+  EXPECT_EQ(default_medium(c), Medium::Box);
+  c.lattice = 2;
+  EXPECT_EQ(default_medium(c), Medium::Box);
+  // The struct itself stays the paper's box, and files state the box that to_toml leaves out.
+  EXPECT_EQ(PhysicsConfig{}.medium, Medium::Box);
+  EXPECT_EQ(to_toml(PhysicsConfig{}).find("medium"), std::string::npos);
+  EXPECT_EQ(physics_toml(PhysicsConfig{}), to_toml(PhysicsConfig{}) + "medium = \"box\"\n");
+}
+
 TEST(Config, RejectsImpossibleInputNamingTheFlag) {
   auto message = [](auto mutate) {
     PhysicsConfig c;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -14,6 +15,7 @@
 #include "sim/config.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "sim/observables.h"
 #include "sim/unbounded_medium.h"
 
 namespace gs {
@@ -142,79 +144,174 @@ TEST(UnboundedEngine, RefusesToMakeMoreThanParticlesAllows) {
   }
 }
 
-// Means and standard errors of N_t, E_t and R_t at time t over `runs` realisations.
+// One ensemble at time t: per realisation N_t, E_t, R_t and the active particles' speeds.
 struct Ensemble {
-  double mean[3] = {}, error[3] = {};
+  std::vector<std::array<double, 3>> scalars;
+  std::vector<std::vector<double>> speeds;
   double reach = 0;  // the farthest an active particle got from the kick, in any run
 };
 
 Ensemble ensemble(PhysicsConfig c, int runs, double t) {
-  double sum[3] = {}, sum2[3] = {};
   Ensemble e;
+  Snapshot active;
   for (int k = 0; k < runs; ++k) {
     c.realisation = static_cast<std::uint64_t>(k);
     auto sim = make_simulation(c);
     sim->run_until(t);
     const Sample s = sim->sample();
-    std::vector<Eigen::Vector3d> active;
-    sim->active_positions(active);
-    for (const auto& x : active)
-      e.reach =
-          std::max(e.reach, (x - Eigen::Vector3d::Constant(0.5 * c.box())).head(c.dim).norm());
-    const double x[3] = {static_cast<double>(s.active), s.energy, s.radius_rms};
-    for (int m = 0; m < 3; ++m) sum[m] += x[m], sum2[m] += x[m] * x[m];
-  }
-  for (int m = 0; m < 3; ++m) {
-    e.mean[m] = sum[m] / runs;
-    const double var = (sum2[m] - runs * e.mean[m] * e.mean[m]) / (runs - 1);
-    e.error[m] = std::sqrt(std::max(var, 0.0) / runs);
+    sim->active_snapshot(active);
+    // The kick's site; 2D positions have z = 0.
+    const double half = 0.5 * c.box();
+    const Eigen::Vector3d centre(half, half, c.dim == 3 ? half : 0.0);
+    for (const auto& x : active.position) e.reach = std::max(e.reach, (x - centre).norm());
+    e.scalars.push_back({static_cast<double>(s.active), s.energy, s.radius_rms});
+    e.speeds.push_back(active_speeds(active));
   }
   return e;
 }
 
-// The largest of the three differences in units of their combined standard error.
-double worst_z(const Ensemble& a, const Ensemble& b) {
-  double z = 0;
-  for (int m = 0; m < 3; ++m)
-    z = std::max(z, std::abs(a.mean[m] - b.mean[m]) / std::hypot(a.error[m], b.error[m]));
-  return z;
+struct MeanError {
+  double mean = 0, error = 0;
+};
+
+MeanError mean_error(const std::vector<double>& x) {
+  const double n = static_cast<double>(x.size());
+  double sum = 0, sum2 = 0;
+  for (double v : x) sum += v, sum2 += v * v;
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(sum2 - n * mean * mean, 0.0) / (n - 1) / n)};
 }
 
-// r = 0.5 kicks, `runs` realisations each (2 s of CPU in 2D, 4 in 3D; many small runs beat a few
-// large ones for the same cost), in a box of `particles` whose front stays below 0.6 L/2 (checked) and in
-// the unbounded medium. Seeds are fixed, so the test is deterministic. The bound is 3 standard
-// errors: two means of 100 or so differ by more by chance in 0.3% of seed sets per observable
-// (under 1% for the worst of three). A medium of the wrong density (0.3 against 0.25) must be seen.
-void expect_agreement(int dim, std::int64_t particles, double t, int runs) {
+double z_of(const MeanError& a, const MeanError& b) {
+  return std::abs(a.mean - b.mean) / std::hypot(a.error, b.error);
+}
+
+// P(v,t) in kSpeedBins bins of equal probability in the box ensemble (edges at the quantiles of
+// its pooled speeds): each realisation's fraction of active particles per bin, so that the
+// correlations within a realisation are in the realisation-to-realisation error.
+constexpr int kSpeedBins = 8;
+
+std::vector<double> speed_edges(const Ensemble& box) {
+  std::vector<double> all;
+  for (const auto& v : box.speeds) all.insert(all.end(), v.begin(), v.end());
+  std::sort(all.begin(), all.end());
+  std::vector<double> edges;
+  for (int k = 1; k < kSpeedBins; ++k) edges.push_back(all[all.size() * k / kSpeedBins]);
+  return edges;
+}
+
+std::vector<MeanError> speed_fractions(const Ensemble& e, const std::vector<double>& edges,
+                                       double factor) {
+  std::vector<std::vector<double>> fraction(kSpeedBins);
+  for (const auto& speeds : e.speeds) {
+    std::vector<double> count(kSpeedBins, 0.0);
+    for (double v : speeds)
+      count[std::upper_bound(edges.begin(), edges.end(), v * factor) - edges.begin()] += 1;
+    for (int k = 0; k < kSpeedBins; ++k)
+      fraction[k].push_back(count[k] / std::max<double>(1, speeds.size()));
+  }
+  std::vector<MeanError> out;
+  for (const auto& f : fraction) out.push_back(mean_error(f));
+  return out;
+}
+
+// Worst z of N_t, E_t, R_t (E_t left out at r = 1, where it is the kick's energy to round-off in
+// both media) and of P(v,t)'s bins, the unbounded ensemble's speeds scaled by `factor`.
+struct Verdict {
+  double scalars = 0, speeds = 0;
+};
+
+Verdict compare(const Ensemble& box, const Ensemble& open, bool elastic, double factor = 1.0,
+                bool print = false) {
+  static const char* kNames[3] = {"N_t", "E_t", "R_t"};
+  Verdict v;
+  for (int m = 0; m < 3; ++m) {
+    if (m == 1 && elastic) continue;
+    std::vector<double> a, b;
+    for (const auto& s : box.scalars) a.push_back(s[m]);
+    for (const auto& s : open.scalars) b.push_back(s[m]);
+    const MeanError x = mean_error(a), y = mean_error(b);
+    v.scalars = std::max(v.scalars, z_of(x, y));
+    if (print)
+      std::printf("  %s: box %.5g +- %.2g, unbounded %.5g +- %.2g, z %.2f\n", kNames[m], x.mean,
+                  x.error, y.mean, y.error, z_of(x, y));
+  }
+  const std::vector<double> edges = speed_edges(box);
+  const auto a = speed_fractions(box, edges, 1.0), b = speed_fractions(open, edges, factor);
+  for (int k = 0; k < kSpeedBins; ++k) v.speeds = std::max(v.speeds, z_of(a[k], b[k]));
+  if (print) {
+    std::printf("  P(v,t) fractions in %d bins (edges", kSpeedBins);
+    for (double x : edges) std::printf(" %.3g", x);
+    std::printf("):\n    box      ");
+    for (const auto& x : a) std::printf(" %.4f", x.mean);
+    std::printf("\n    unbounded");
+    for (const auto& x : b) std::printf(" %.4f", x.mean);
+    std::printf("\n  worst z: N_t/E_t/R_t %.2f, P(v,t) %.2f\n", v.scalars, v.speeds);
+  }
+  return v;
+}
+
+// Kicks with restitution r, `runs` realisations each (many small runs beat a few large ones for
+// the same cost) in a box of `particles` whose front stays below 0.6 L/2 (checked) and in the
+// unbounded medium; seeds are fixed, so the test is deterministic. The bounds: 3 standard errors
+// on the worst of N_t, E_t, R_t, crossed by chance in under 3 x 0.27% of seed sets, and 3.5 on the
+// worst of P(v,t)'s 8 bins, under 8 x 0.047%. Both must be crossed by a medium of the wrong density
+// (0.3 against 0.25), and the second by P(v,t) shifted by `shift` (unbounded speeds x (1 + shift)):
+// 5% in 2D; 10% in 3D, whose fronts of 50-90 spheres by the time they near 0.6 L/2 resolve less.
+constexpr double kScalarBound = 3.0, kSpeedBound = 3.5;
+
+bool agree(const Verdict& v) {
+  return v.scalars < kScalarBound && v.speeds < kSpeedBound;
+}
+
+void expect_agreement(int dim, double r, std::int64_t particles, double t, int runs, double shift) {
   PhysicsConfig box;
   box.dim = dim;
-  box.restitution = 0.5;
+  box.restitution = r;
   box.particles = particles;
   box.kick_site = KickSite::Centre;
   box.seed = 21;
   PhysicsConfig open = box;
   open.medium = Medium::Unbounded;
+  const bool elastic = r == 1.0;
   const Ensemble a = ensemble(box, runs, t), b = ensemble(open, runs, t);
-  for (int m = 0; m < 3; ++m)
-    std::printf("observable %d: box %.4g +- %.2g, unbounded %.4g +- %.2g\n", m, a.mean[m],
-                a.error[m], b.mean[m], b.error[m]);
-  std::printf("box reach %.3g of L/2 = %.3g, z %.3g\n", a.reach, box.box() / 2, worst_z(a, b));
+  std::printf("%dD r = %g, t = %g, %d + %d realisations; box front %.3g of 0.6 L/2 = %.3g\n", dim,
+              r, t, runs, runs, a.reach, 0.6 * box.box() / 2);
+  const Verdict same = compare(a, b, elastic, 1.0, true);
   EXPECT_LT(a.reach, 0.6 * box.box() / 2) << "the box runs' front came near the box edge";
-  EXPECT_LT(worst_z(a, b), 3.0);
+  EXPECT_LT(same.scalars, kScalarBound);
+  EXPECT_LT(same.speeds, kSpeedBound);
+  const double shifted = compare(a, b, elastic, 1 + shift).speeds;
   open.density = 0.3;
-  const double wrong = worst_z(a, ensemble(open, runs, t));
-  std::printf("wrong density: z %.3g\n", wrong);
-  EXPECT_GT(wrong, 3.0) << "the comparison sees a wrong density";
+  const Verdict wrong = compare(a, ensemble(open, runs, t), elastic);
+  std::printf("  must fail: P(v,t) x %.3g z %.2f; density 0.3 z %.2f (P(v,t) %.2f)\n", 1 + shift,
+              shifted, wrong.scalars, wrong.speeds);
+  EXPECT_GT(shifted, kSpeedBound) << "the comparison sees P(v,t) shifted by " << shift;
+  EXPECT_FALSE(agree(wrong)) << "the comparison sees a wrong density";
 }
 
-// L/2 = 200, the farthest active disc 53 from the kick (R_t ~ 23): z = 1.3, the wrong density 10.
+TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns2DInelastic) {
+  expect_agreement(2, 0.1, 40000, 1000, 128, 0.05);
+}
+
 TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns2D) {
-  expect_agreement(2, 40000, 1000, 128);
+  expect_agreement(2, 0.5, 40000, 1000, 128, 0.05);
 }
 
-// L/2 = 34, the farthest active sphere 16 from the kick (R_t ~ 5): z = 0.9, the wrong density 11.
+TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns2DElastic) {
+  expect_agreement(2, 1.0, 40000, 300, 128, 0.05);
+}
+
+TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns3DInelastic) {
+  expect_agreement(3, 0.1, 80000, 30, 96, 0.1);
+}
+
 TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns3D) {
-  expect_agreement(3, 80000, 30, 96);
+  expect_agreement(3, 0.5, 80000, 30, 96, 0.1);
+}
+
+TEST(UnboundedEngine, EnsembleAgreesWithBoxRuns3DElastic) {
+  expect_agreement(3, 1.0, 80000, 20, 96, 0.1);
 }
 
 }  // namespace
