@@ -352,7 +352,9 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
         const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
         const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
         if (y0 > y1) continue;  // above or below the picture
-        Binned e{0, 0, kByIndex, static_cast<std::uint32_t>(i)};
+        std::int16_t ix = 0, iy = 0;
+        std::uint16_t code = kByIndex;
+        auto word = static_cast<std::uint32_t>(i);
         if (stamps && slot < kMaxStampRadii && rad <= kStampMaxPx) {
           // As make_stamps reaches and stamp_disc clips: a disc whose stamp lies wholly left or
           // right of the picture draws nothing, and the others' pixels fit 16 bits.
@@ -364,12 +366,20 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
             continue;  // also not a number
           const int qx = std::min(kPhases - 1, static_cast<int>((X - fX) * kPhases));
           const int qy = std::min(kPhases - 1, static_cast<int>((Y - fY) * kPhases));
-          e.ix = static_cast<std::int16_t>(fX);
-          e.iy = static_cast<std::int16_t>(fY);
-          e.code = static_cast<std::uint16_t>((slot * kPhases + qy) * kPhases + qx);
-          std::memcpy(&e.word, d.rgba, 4);
+          ix = static_cast<std::int16_t>(fX);
+          iy = static_cast<std::int16_t>(fY);
+          code = static_cast<std::uint16_t>((slot * kPhases + qy) * kPhases + qx);
+          std::memcpy(&word, d.rgba, 4);
         }
-        for (int b = y0 / kBand; b <= y1 / kBand; ++b) lists[b].push_back(e);
+        // Field by field into the list: a record made on the stack and copied whole stalled on
+        // forwarding its 16-bit stores to the 64-bit load of the copy.
+        for (int b = y0 / kBand; b <= y1 / kBand; ++b) {
+          Binned& e = lists[b].emplace_back();
+          e.ix = ix;
+          e.iy = iy;
+          e.code = code;
+          e.word = word;
+        }
       }
     });
   };
