@@ -28,12 +28,12 @@ constexpr int kHardSizeLimit = 16384;
 // and integer blends instead of a square root and float blends per pixel.
 constexpr int kPhases = 32;
 struct Stamps {
-  float r = -1;     // world radius of the discs (with ppu: the pixel radius)
+  float r = -1;  // world radius of the discs (with ppu: the pixel radius)
   double ppu = 0;
   int lo = 0, size = 0;  // pixels lo .. lo + size - 1 from the centre's pixel, in x and in y
   // Per phase (y major): the box of pixels with coverage > 0, offsets from lo.
   std::vector<std::array<std::uint8_t, 4>> box;  // x0, x1, y0, y1 (inclusive; x0 > x1: none)
-  std::vector<std::uint8_t> alpha;  // per phase, size x size, row major; 0..255
+  std::vector<std::uint8_t> alpha;               // per phase, size x size, row major; 0..255
 };
 
 // A disc as a band list holds it: a stamped disc by the pixel its centre falls in, its phase,
@@ -210,7 +210,6 @@ void splat_disc(Image& img, const Sprite& d, double ppu, int row0, int row1) {
   }
 }
 
-
 // Largest pixel radius drawn from stamps (larger discs are few and cover many pixels each) and
 // the most radii a frame keeps stamps for (a polydisperse file is drawn disc by disc).
 constexpr double kStampMaxPx = 3;
@@ -271,9 +270,8 @@ void stamp_disc(Image& img, const Binned& d, const Stamps& st, int row0, int row
     using U8x16 = std::uint8_t __attribute__((vector_size(16)));
     using U16x16 = std::uint16_t __attribute__((vector_size(32)));
     const std::uint32_t keep = 0xffffffffu >> (8 * (3 - (x1 - x0)));
-    const U16x16 colour = {rgba[0], rgba[1], rgba[2], 255, rgba[0], rgba[1],
-                           rgba[2], 255,       rgba[0], rgba[1], rgba[2], 255,
-                           rgba[0], rgba[1], rgba[2], 255};
+    const U16x16 colour = {rgba[0], rgba[1], rgba[2], 255, rgba[0], rgba[1], rgba[2], 255,
+                           rgba[0], rgba[1], rgba[2], 255, rgba[0], rgba[1], rgba[2], 255};
     for (int y = y0; y <= y1; ++y) {
       std::uint32_t w4;
       std::memcpy(&w4, alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo), 4);
@@ -434,7 +432,7 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
 void check_size(int width, int height, int limit) {
   if (width <= 0 || height <= 0 || width > limit || height > limit)
     throw UsageError("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
+                     " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
 }
 
 struct Renderer::Impl {
@@ -447,9 +445,9 @@ struct Renderer::Impl {
   int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
   int max_size = 0, max_samples = 0;
   float max_point_size = 1;
-  std::vector<Sprite> vertices;  // four per particle for quads
-  SplatBuffers splat;            // tiny 2D discs by band of rows, for the CPU splats
-  SceneScratch scene_scratch;    // the scenes' memory, from frame to frame
+  std::vector<Sprite> vertices;     // four per particle for quads
+  SplatBuffers splat;               // tiny 2D discs by band of rows, for the CPU splats
+  SceneScratch scene_scratch;       // the scenes' memory, from frame to frame
   std::vector<std::uint8_t> spare;  // a recycled picture's pixels
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;

@@ -357,8 +357,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
       if (speed_values)
         out.band_v.push_back(values[i]);
       else
-        out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms
-                                          : s.velocity[i].norm());
+        out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms : s.velocity[i].norm());
     }
     if (overlay || std::isnan(values[i])) {
       push(out, wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);
