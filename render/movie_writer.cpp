@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <system_error>
+#include <utility>
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -238,6 +239,11 @@ void MovieWriter::add(Image frame) {
   cv_.notify_all();
 }
 
+Image MovieWriter::spare() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(spare_, Image{});
+}
+
 void MovieWriter::finish() {
   if (done_) return;
   {
@@ -295,6 +301,8 @@ void MovieWriter::worker_loop() {
       }
       cv_.notify_all();
       encode_frame(frame);
+      std::lock_guard lock(mutex_);
+      spare_ = std::move(frame);
     }
     bool cancelled;
     {
