@@ -431,8 +431,9 @@ void add_render_cases(std::vector<Case>& cases) {
          st.show_inactive = true;
          auto v = full_hd();
          v.framing = render::Framing::Box;
-         // 167 ms of CPU before the discs were splatted by bands of rows on two threads.
-         return measure(s, st, v, "cpu <= 56 ms");
+         // 167 ms of CPU before the discs were splatted by bands of rows on two threads; issue
+         // 32 asks for 15 ms, within 1.5x of render/plain_splat_2.5e5.
+         return measure(s, st, v, "cpu <= 15 ms");
        }});
   cases.push_back({"render/plain_splat_2.5e5",
                    "the limit: a plain banded splatter of render/discs_2.5e5's discs, opaque",

@@ -32,10 +32,8 @@ FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   auto in_front = [&](std::size_t i) {
     return f.any_active ? s.active[i] != 0 : s.has_velocity() && s.velocity[i].squaredNorm() > 0;
   };
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.front.extend(s.position[i]);
-    if (s.active[i] || !f.any_active) f.fit.extend(s.position[i]);
-  }
   if (f.front.isEmpty()) f.front.extend(s.info.origin + s.info.box / 2);
   for (std::size_t i = 0; i < s.size(); ++i)
     if (in_front(i)) f.radius = std::max(f.radius, (s.position[i] - f.front.center()).norm());
@@ -123,6 +121,7 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       }
       t0 = std::chrono::steady_clock::now();
       movie.add(std::move(img));
+      if (render::Image done = movie.spare(); !done.rgba.empty()) renderer.recycle(std::move(done));
       encode_s += seconds_since(t0);
     });
     progress.done();

@@ -23,8 +23,8 @@
 
 namespace gs::jobs {
 
-// What the first pass learns about one frame: the colour range of its particles, where the
-// front is (unwrapped), and the box the renderer's fitted framing will use.
+// What the first pass learns about one frame: the colour range of its particles and where the
+// front is (unwrapped).
 struct FrameScan {
   double time = 0;
   std::int64_t step = 0;  // LAMMPS and HOOMD files: orders frames of equal (or no) time
@@ -34,7 +34,6 @@ struct FrameScan {
   std::pair<double, double> range{0, 1};
   Eigen::AlignedBox3d front;  // active particles, else the moving ones (the kicked particle)
   double radius = 0;          // of the sphere about front.center() holding the same particles
-  Eigen::AlignedBox3d fit;    // the renderer's rule: active particles, else all
 };
 
 FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range);

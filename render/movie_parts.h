@@ -37,6 +37,8 @@ class MovieParts {
   MovieParts& operator=(const MovieParts&) = delete;
 
   void add(Image frame);
+  // A frame the open part's encoder is done with, or an empty image (MovieWriter::spare).
+  Image spare() { return open_ ? open_->spare() : Image{}; }
   // Finishes the open part, if a frame went into it, and syncs it to disk: after cut(), parts()
   // parts holding frames_added() frames are whole on disk.
   void cut();

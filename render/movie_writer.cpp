@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <system_error>
+#include <utility>
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -13,10 +14,10 @@ extern "C" {
 #include <libavutil/error.h>
 #include <libavutil/imgutils.h>
 #include <libavutil/opt.h>
-#include <libswscale/swscale.h>
 }
 
 #include "render/av_error.h"
+#include "render/yuv420.h"
 #include "sim/error.h"
 
 namespace gs::render {
@@ -75,14 +76,12 @@ struct MovieWriter::Av {
   AVFormatContext* format = nullptr;
   AVCodecContext* encoder = nullptr;
   AVStream* stream = nullptr;
-  SwsContext* sws = nullptr;
   AVFrame* frame = nullptr;
   AVPacket* packet = nullptr;
   Image padded;
   std::int64_t next_pts = 0;
 
   ~Av() {
-    sws_freeContext(sws);
     av_frame_free(&frame);
     av_packet_free(&packet);
     avcodec_free_context(&encoder);
@@ -187,14 +186,6 @@ MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieOptions& 
     check_av(header, path_, "cannot write the header");
     GS_CHECK_MSG(unused_mux == 0, "muxer ignored an option");
 
-    // RGB is full range; the movie is BT.709 limited range, matching the tags set above.
-    av.sws = sws_getContext(encoded_width_, encoded_height_, AV_PIX_FMT_RGBA, encoded_width_,
-                            encoded_height_, AV_PIX_FMT_YUV420P, SWS_BICUBIC | SWS_ACCURATE_RND,
-                            nullptr, nullptr, nullptr);
-    GS_CHECK(av.sws);
-    const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-    GS_CHECK(sws_setColorspaceDetails(av.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16) >= 0);
-
     av.frame = av_frame_alloc();
     GS_CHECK(av.frame);
     av.frame->format = AV_PIX_FMT_YUV420P;
@@ -246,6 +237,11 @@ void MovieWriter::add(Image frame) {
   ++frames_added_;
   lock.unlock();
   cv_.notify_all();
+}
+
+Image MovieWriter::spare() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(spare_, Image{});
 }
 
 void MovieWriter::finish() {
@@ -305,6 +301,8 @@ void MovieWriter::worker_loop() {
       }
       cv_.notify_all();
       encode_frame(frame);
+      std::lock_guard lock(mutex_);
+      spare_ = std::move(frame);
     }
     bool cancelled;
     {
@@ -340,11 +338,10 @@ void MovieWriter::encode_frame(const Image& image) {
     }
     // The encoder may still hold a reference to the previous picture.
     GS_CHECK(av_frame_make_writable(av.frame) >= 0);
-    const std::uint8_t* planes[1] = {src->rgba.data()};
-    const int strides[1] = {src->width * 4};
-    const int rows =
-        sws_scale(av.sws, planes, strides, 0, src->height, av.frame->data, av.frame->linesize);
-    GS_CHECK(rows == encoded_height_);
+    // RGB is full range; the movie is BT.709 limited range, matching the tags set above.
+    GS_CHECK(av.frame->linesize[1] == av.frame->linesize[2]);
+    rgba_to_yuv420(*src, av.frame->data[0], av.frame->linesize[0], av.frame->data[1],
+                   av.frame->data[2], av.frame->linesize[1]);
     av.frame->pts = av.next_pts++;
     frame = av.frame;
   }

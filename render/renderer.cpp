@@ -28,17 +28,29 @@ constexpr int kHardSizeLimit = 16384;
 // and integer blends instead of a square root and float blends per pixel.
 constexpr int kPhases = 32;
 struct Stamps {
-  float r = -1;     // world radius of the discs (with ppu: the pixel radius)
+  float r = -1;  // world radius of the discs (with ppu: the pixel radius)
   double ppu = 0;
   int lo = 0, size = 0;  // pixels lo .. lo + size - 1 from the centre's pixel, in x and in y
   // Per phase (y major): the box of pixels with coverage > 0, offsets from lo.
   std::vector<std::array<std::uint8_t, 4>> box;  // x0, x1, y0, y1 (inclusive; x0 > x1: none)
-  std::vector<std::uint8_t> alpha;  // per phase, size x size, row major; 0..255
+  std::vector<std::uint8_t> alpha;               // per phase, size x size, row major; 0..255
 };
+
+// A disc as a band list holds it: a stamped disc by the pixel its centre falls in, its phase,
+// the thread's slot of its radius and its colour, worked out once when it is binned (12 bytes,
+// where the Sprite is 20, and no floating point left for the band's loop); any other by its
+// index in the scene's sprites.
+struct Binned {
+  std::int16_t ix, iy;
+  std::uint16_t code;  // phase + slot * kPhases^2, or kByIndex
+  std::uint32_t word;  // RGBA bytes, or the sprite's index
+};
+static_assert(sizeof(Binned) == 12);
+constexpr std::uint16_t kByIndex = 0xffff;
 
 struct SplatBuffers {
   std::vector<Stamps> stamps;               // one per radius of this frame's discs
-  std::vector<std::vector<Sprite>> binned;  // per thread and band: its discs, in drawing order
+  std::vector<std::vector<Binned>> binned;  // per thread and band: its discs, in drawing order
 };
 
 // 2D discs as point sprites: llvmpipe rasterizes a point as one rectangle, where a quad costs
@@ -198,7 +210,6 @@ void splat_disc(Image& img, const Sprite& d, double ppu, int row0, int row1) {
   }
 }
 
-
 // Largest pixel radius drawn from stamps (larger discs are few and cover many pixels each) and
 // the most radii a frame keeps stamps for (a polydisperse file is drawn disc by disc).
 constexpr double kStampMaxPx = 3;
@@ -242,14 +253,11 @@ void make_stamps(Stamps& st, float r, double ppu) {
 // channels are blended two at a time in 16-bit lanes of one word (at most 65152 in a lane, so
 // no carry crosses), and x / 255 is (x + (x >> 8) + 1) >> 8 for every x up to 65152 (checked
 // for all p, c, a). The alpha byte is kept.
-void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int row0, int row1) {
-  const double X = img.width / 2.0 + d.x * ppu, Y = img.height / 2.0 - d.y * ppu;
-  const double fX = std::floor(X), fY = std::floor(Y);
-  if (!(std::abs(fX) < 1e9 && std::abs(fY) < 1e9)) return;  // far outside (or not a number)
-  const int ix = static_cast<int>(fX), iy = static_cast<int>(fY);
-  const int qx = std::min(kPhases - 1, static_cast<int>((X - fX) * kPhases));
-  const int qy = std::min(kPhases - 1, static_cast<int>((Y - fY) * kPhases));
-  const std::size_t phase = static_cast<std::size_t>(qy) * kPhases + qx;
+void stamp_disc(Image& img, const Binned& d, const Stamps& st, int row0, int row1) {
+  const int ix = d.ix, iy = d.iy;
+  const std::size_t phase = d.code % (kPhases * kPhases);
+  std::uint8_t rgba[4];
+  std::memcpy(rgba, &d.word, 4);
   const auto& b = st.box[phase];
   const int x0 = std::max(0, ix + st.lo + b[0]), x1 = std::min(img.width - 1, ix + st.lo + b[1]);
   const int y0 = std::max(row0, iy + st.lo + b[2]), y1 = std::min(row1 - 1, iy + st.lo + b[3]);
@@ -262,9 +270,8 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
     using U8x16 = std::uint8_t __attribute__((vector_size(16)));
     using U16x16 = std::uint16_t __attribute__((vector_size(32)));
     const std::uint32_t keep = 0xffffffffu >> (8 * (3 - (x1 - x0)));
-    const U16x16 colour = {d.rgba[0], d.rgba[1], d.rgba[2], 255, d.rgba[0], d.rgba[1],
-                           d.rgba[2], 255,       d.rgba[0], d.rgba[1], d.rgba[2], 255,
-                           d.rgba[0], d.rgba[1], d.rgba[2], 255};
+    const U16x16 colour = {rgba[0], rgba[1], rgba[2], 255, rgba[0], rgba[1], rgba[2], 255,
+                           rgba[0], rgba[1], rgba[2], 255, rgba[0], rgba[1], rgba[2], 255};
     for (int y = y0; y <= y1; ++y) {
       std::uint32_t w4;
       std::memcpy(&w4, alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo), 4);
@@ -284,7 +291,7 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
     return;
   }
   constexpr std::uint32_t kLanes = 0x00ff00ffu, kHalf = 0x007f007fu, kOne = 0x00010001u;
-  const std::uint32_t c_rb = d.rgba[0] | std::uint32_t(d.rgba[2]) << 16, c_ga = d.rgba[1];
+  const std::uint32_t c_rb = rgba[0] | std::uint32_t(rgba[2]) << 16, c_ga = rgba[1];
   for (int y = y0; y <= y1; ++y) {
     const std::uint8_t* a = alpha + (y - iy - st.lo) * st.size + (x0 - ix - st.lo);
     std::uint8_t* p = img.pixel(x0, y);
@@ -303,7 +310,7 @@ void stamp_disc(Image& img, const Sprite& d, const Stamps& st, double ppu, int r
 }
 
 // Discs in random order write all over a picture larger than the caches, so they are first
-// copied into bands of 32 rows (in drawing order, a disc across two bands into both), and each
+// sorted into bands of 32 rows (in drawing order, a disc across two bands into both), and each
 // band, filled with the background, is drawn from its own contiguous list with every write close
 // by. The threads each sort their consecutive piece of the discs into lists of their own, one
 // per band, in one pass (a band is drawn from the first thread's list, then the second's..., so
@@ -318,32 +325,71 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
   const int threads = frame_threads(std::max<std::size_t>(n, img.rgba.size() / 16), 20000);
   // Each thread's list for each band is kept from frame to frame: no page faults for new ones.
   buf.binned.resize(static_cast<std::size_t>(threads) * bands);
-  // The radii of the discs, kMaxStampRadii + 1 at most per thread (then there are too many).
+  // The radii of each thread's discs in the order met, kMaxStampRadii + 1 at most (then there
+  // are too many for stamps); a stamped disc names its radius by its slot here.
   std::vector<std::vector<float>> radii(threads);
-  run_on_threads(threads, [&](int t) {
-    const auto [first, last] = piece(n, threads, t);
-    std::vector<Sprite>* lists = &buf.binned[static_cast<std::size_t>(t) * bands];
-    for (int b = 0; b < bands; ++b) lists[b].clear();
-    std::vector<float>& mine = radii[t];
-    float last_r = -1;
-    for (std::size_t i = first; i < last; ++i) {
-      const Sprite& d = discs[i];
-      if (d.r != last_r && mine.size() <= kMaxStampRadii) {
-        last_r = d.r;
-        if (std::find(mine.begin(), mine.end(), d.r) == mine.end()) mine.push_back(d.r);
+  // Stamped discs are binned by pixel and phase, unless the frame turns out to have too many
+  // radii for stamps: then it is binned again, every disc by index.
+  auto bin = [&](bool stamps) {
+    run_on_threads(threads, [&](int t) {
+      const auto [first, last] = piece(n, threads, t);
+      std::vector<Binned>* lists = &buf.binned[static_cast<std::size_t>(t) * bands];
+      for (int b = 0; b < bands; ++b) lists[b].clear();
+      std::vector<float>& mine = radii[t];
+      mine.clear();
+      float last_r = -1;
+      std::size_t slot = 0;
+      for (std::size_t i = first; i < last; ++i) {
+        const Sprite& d = discs[i];
+        if (d.r != last_r) {
+          last_r = d.r;
+          slot = static_cast<std::size_t>(std::find(mine.begin(), mine.end(), d.r) - mine.begin());
+          if (slot == mine.size() && mine.size() <= kMaxStampRadii) mine.push_back(d.r);
+        }
+        const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
+        const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
+        const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
+        if (y0 > y1) continue;  // above or below the picture
+        std::int16_t ix = 0, iy = 0;
+        std::uint16_t code = kByIndex;
+        auto word = static_cast<std::uint32_t>(i);
+        if (stamps && slot < kMaxStampRadii && rad <= kStampMaxPx) {
+          // As make_stamps reaches and stamp_disc clips: a disc whose stamp lies wholly left or
+          // right of the picture draws nothing, and the others' pixels fit 16 bits.
+          const double X = img.width / 2.0 + d.x * ppu;
+          const double fX = std::floor(X), fY = std::floor(Y);
+          const int reach = static_cast<int>(std::ceil(rad)) + 1;
+          if (!(fX + reach >= 0 && fX - reach < img.width && fY + reach >= 0 &&
+                fY - reach < img.height))
+            continue;  // also not a number
+          const int qx = std::min(kPhases - 1, static_cast<int>((X - fX) * kPhases));
+          const int qy = std::min(kPhases - 1, static_cast<int>((Y - fY) * kPhases));
+          ix = static_cast<std::int16_t>(fX);
+          iy = static_cast<std::int16_t>(fY);
+          code = static_cast<std::uint16_t>((slot * kPhases + qy) * kPhases + qx);
+          std::memcpy(&word, d.rgba, 4);
+        }
+        // Field by field into the list: a record made on the stack and copied whole stalled on
+        // forwarding its 16-bit stores to the 64-bit load of the copy.
+        for (int b = y0 / kBand; b <= y1 / kBand; ++b) {
+          Binned& e = lists[b].emplace_back();
+          e.ix = ix;
+          e.iy = iy;
+          e.code = code;
+          e.word = word;
+        }
       }
-      const double Y = img.height / 2.0 - d.y * ppu, rad = d.r * ppu;
-      const int y0 = std::max(0, static_cast<int>(std::floor(Y - rad)));
-      const int y1 = std::min(img.height - 1, static_cast<int>(std::ceil(Y + rad)) - 1);
-      if (y0 > y1) continue;  // above or below the picture
-      for (int b = y0 / kBand; b <= y1 / kBand; ++b) lists[b].push_back(d);
-    }
-  });
+    });
+  };
+  bin(true);
   std::vector<float> all;
   for (const auto& r : radii)
     for (float x : r)
       if (std::find(all.begin(), all.end(), x) == all.end()) all.push_back(x);
-  if (all.size() > kMaxStampRadii) all.clear();
+  if (all.size() > kMaxStampRadii) {
+    all.clear();
+    bin(false);
+  }
   std::erase_if(all, [&](float r) { return !(r * ppu <= kStampMaxPx); });
   // Stamps kept for radii still drawn are reused; the others are made anew.
   std::vector<Stamps> kept;
@@ -354,11 +400,14 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
     make_stamps(kept.back(), r, ppu);
   }
   buf.stamps = std::move(kept);
-  auto stamps_of = [&](float r) -> const Stamps* {
-    for (const Stamps& st : buf.stamps)
-      if (st.r == r) return &st;
-    return nullptr;
-  };
+  // Each thread's slots' stamps (null for a radius drawn without one).
+  std::vector<std::array<const Stamps*, kMaxStampRadii>> slots(threads);
+  for (int t = 0; t < threads; ++t) {
+    slots[t].fill(nullptr);
+    for (std::size_t k = 0; k < std::min(radii[t].size(), kMaxStampRadii); ++k)
+      for (const Stamps& st : buf.stamps)
+        if (st.r == radii[t][k]) slots[t][k] = &st;
+  }
   std::atomic<int> next{0};
   std::uint32_t bg;
   std::memcpy(&bg, background, 4);
@@ -367,15 +416,12 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
       const int row0 = b * kBand, row1 = std::min(img.height, row0 + kBand);
       auto* px = reinterpret_cast<std::uint32_t*>(img.pixel(0, row0));
       std::fill(px, px + static_cast<std::size_t>(row1 - row0) * img.width, bg);
-      float r = -1;
-      const Stamps* st = nullptr;
       for (int t = 0; t < threads; ++t)
-        for (const Sprite& d : buf.binned[static_cast<std::size_t>(t) * bands + b]) {
-          if (d.r != r) r = d.r, st = stamps_of(r);
-          if (st)
-            stamp_disc(img, d, *st, ppu, row0, row1);
+        for (const Binned& d : buf.binned[static_cast<std::size_t>(t) * bands + b]) {
+          if (d.code == kByIndex)
+            splat_disc(img, discs[d.word], ppu, row0, row1);
           else
-            splat_disc(img, d, ppu, row0, row1);
+            stamp_disc(img, d, *slots[t][d.code / (kPhases * kPhases)], row0, row1);
         }
     }
   });
@@ -386,7 +432,7 @@ void splat_discs(Image& img, const std::uint8_t background[4], const std::vector
 void check_size(int width, int height, int limit) {
   if (width <= 0 || height <= 0 || width > limit || height > limit)
     throw UsageError("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
+                     " is out of range (1 to " + std::to_string(limit) + " pixels a side)");
 }
 
 struct Renderer::Impl {
@@ -399,9 +445,9 @@ struct Renderer::Impl {
   int fbo_w = 0, fbo_h = 0, fbo_samples = -1;
   int max_size = 0, max_samples = 0;
   float max_point_size = 1;
-  std::vector<Sprite> vertices;  // four per particle for quads
-  SplatBuffers splat;            // tiny 2D discs by band of rows, for the CPU splats
-  SceneScratch scene_scratch;    // the scenes' memory, from frame to frame
+  std::vector<Sprite> vertices;     // four per particle for quads
+  SplatBuffers splat;               // tiny 2D discs by band of rows, for the CPU splats
+  SceneScratch scene_scratch;       // the scenes' memory, from frame to frame
   std::vector<std::uint8_t> spare;  // a recycled picture's pixels
   std::vector<std::uint8_t> readback;
   std::optional<OverlayPainter> painter;

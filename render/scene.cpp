@@ -183,14 +183,17 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   // the particles already in the box, with the same bits.
   Eigen::Vector3d inside = Eigen::Vector3d::Constant(-1);
   if (boxed && boxed->box.allFinite()) inside = boxed->box * (1 - 0x1p-50);
-  auto wrapped = [&](Eigen::Vector3d p) {
-    if (wrap)
-      for (int k = 0; k < dim; ++k) {
-        const double x = p[k] - boxed->origin[k], edge = boxed->box[k];
-        p[k] = x >= 0 && x <= inside[k] ? boxed->origin[k] + x
-                                        : boxed->origin[k] + x - edge * std::floor(x / edge);
-      }
-    return p;
+  // Axis by axis in registers: a loop over the axes of a copy in memory, read back whole, stalled
+  // every particle on the stores it had not yet forwarded (a third of the scene's time).
+  auto wrap_axis = [&](double p, int k) {
+    const double x = p - boxed->origin[k], edge = boxed->box[k];
+    return x >= 0 && x <= inside[k] ? boxed->origin[k] + x
+                                    : boxed->origin[k] + x - edge * std::floor(x / edge);
+  };
+  auto wrapped = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    if (!wrap) return p;
+    return {wrap_axis(p.x(), 0), dim > 1 ? wrap_axis(p.y(), 1) : p.y(),
+            dim > 2 ? wrap_axis(p.z(), 2) : p.z()};
   };
   if (wrap) {
     fit.extend(boxed->origin);
@@ -254,22 +257,25 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     }
   }
 
-  // Where a pass puts sprites (and the inset's copy of the active particles).
+  // Where a pass puts sprites (and the inset's copy of the active particles): room for every
+  // particle of its piece, written through a pointer and counted. push_back kept the vector's
+  // end in memory, reloaded after every sprite since the colour bytes may alias it.
   struct Out {
-    std::vector<Sprite>& sprites;
-    std::vector<float>& shade;
+    Sprite* sprites;
+    float* shade;
+    std::size_t& count;
     std::vector<Eigen::Vector3d>& band_x;
     std::vector<double>& band_v;
   };
   auto push = [&](Out& out, const Eigen::Vector3d& p, double r, Rgb8 c, float shade) {
     if (!cam.visible(p, r)) return;
     const Eigen::Vector3d d = p - cam.origin;
-    out.sprites.push_back({static_cast<float>(d.x()),
-                           static_cast<float>(d.y()),
-                           static_cast<float>(three_d ? d.z() : 0.0),
-                           static_cast<float>(r),
-                           {c[0], c[1], c[2], 255}});
-    out.shade.push_back(shade);
+    out.sprites[out.count] = {static_cast<float>(d.x()),
+                              static_cast<float>(d.y()),
+                              static_cast<float>(three_d ? d.z() : 0.0),
+                              static_cast<float>(r),
+                              {c[0], c[1], c[2], 255}};
+    out.shade[out.count++] = shade;
   };
   std::size_t most = 0;
   for (const Snapshot* s : snaps) most += s->size();
@@ -298,42 +304,43 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
     band_v.reserve(n);
   }
   // A pass over particles [0, n) on the frame's threads: each takes a consecutive piece and
-  // sorts its sprites into those drawn under the others (inactive ones) and the rest. The first
-  // thread appends the former to the scene, all keep the latter in vectors of their own, and the
-  // scene gets, in piece order, the other threads' under sprites and then everyone's others: the
-  // scene is the same whatever the threads, and one pass over a snapshot makes both layers.
+  // sorts its sprites into those drawn under the others (inactive ones) and the rest, in vectors
+  // of its own, and the scene gets, in piece order, everyone's under sprites and then everyone's
+  // others: the scene is the same whatever the threads, and one pass over a snapshot makes both
+  // layers.
   auto in_order = [&](std::size_t n, auto&& visit) {
     constexpr std::size_t kParticlesPerThread = 50000;
     const int threads = frame_threads(n, kParticlesPerThread);
     auto& pieces = keep.pieces;
     if (pieces.size() < static_cast<std::size_t>(threads)) pieces.resize(threads);
-    for (auto& p : pieces) {
-      p.under_sprites.clear();
-      p.under_shade.clear();
-      p.sprites.clear();
-      p.shade.clear();
-      p.band_x.clear();
-      p.band_v.clear();
-    }
     run_on_threads(threads, [&](int t) {
       const auto [first, last] = piece(n, threads, t);
       SceneScratch::Piece& mine = pieces[t];
-      if (t > 0) mine.under_sprites.reserve(last - first);
-      Out under{t == 0 ? sc.sprites : mine.under_sprites, t == 0 ? sc.shade : mine.under_shade,
-                mine.band_x, mine.band_v};
-      Out over{mine.sprites, mine.shade, mine.band_x, mine.band_v};
+      // Grown, never shrunk: a movie's frames write into the same memory.
+      for (auto* v : {&mine.under_sprites, &mine.sprites})
+        if (v->size() < last - first) v->resize(last - first);
+      for (auto* v : {&mine.under_shade, &mine.shade})
+        if (v->size() < last - first) v->resize(last - first);
+      mine.under_count = mine.count = 0;
+      mine.band_x.clear();
+      mine.band_v.clear();
+      Out under{mine.under_sprites.data(), mine.under_shade.data(), mine.under_count, mine.band_x,
+                mine.band_v};
+      Out over{mine.sprites.data(), mine.shade.data(), mine.count, mine.band_x, mine.band_v};
       for (std::size_t i = first; i < last; ++i) visit(under, over, i);
     });
-    auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
-    for (int t = 1; t < threads; ++t) {
-      append(sc.sprites, pieces[t].under_sprites);
-      append(sc.shade, pieces[t].under_shade);
+    auto append = [](auto& to, const auto& from, std::size_t count) {
+      to.insert(to.end(), from.begin(), from.begin() + static_cast<std::ptrdiff_t>(count));
+    };
+    for (int t = 0; t < threads; ++t) {
+      append(sc.sprites, pieces[t].under_sprites, pieces[t].under_count);
+      append(sc.shade, pieces[t].under_shade, pieces[t].under_count);
     }
     for (int t = 0; t < threads; ++t) {
-      append(sc.sprites, pieces[t].sprites);
-      append(sc.shade, pieces[t].shade);
-      append(band_x, pieces[t].band_x);
-      append(band_v, pieces[t].band_v);
+      append(sc.sprites, pieces[t].sprites, pieces[t].count);
+      append(sc.shade, pieces[t].shade, pieces[t].count);
+      append(band_x, pieces[t].band_x, pieces[t].band_x.size());
+      append(band_v, pieces[t].band_v, pieces[t].band_v.size());
     }
   };
   auto inactive = [&](const Snapshot& s, Out& out, std::size_t i) {
@@ -350,8 +357,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
       if (speed_values)
         out.band_v.push_back(values[i]);
       else
-        out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms
-                                          : s.velocity[i].norm());
+        out.band_v.push_back(scaled_inset ? s.velocity[i].norm() / sc.v_rms : s.velocity[i].norm());
     }
     if (overlay || std::isnan(values[i])) {
       push(out, wrapped(s.position[i]), s.radius[i], overlay ? time_colour : pal.inactive, none);

@@ -62,9 +62,11 @@ struct Scene {
 // another (the Renderer): a frame of 2.5e5 discs on fresh pages spent a sixth of its CPU time in
 // page faults. The sprites and shades of a scene done with go back in `sprites` and `shade`.
 struct SceneScratch {
-  struct Piece {  // what a thread makes of its piece of the particles (the first: `over` only)
-    std::vector<Sprite> under_sprites, sprites;  // drawn below (inactive), and the rest
+  struct Piece {  // what a thread makes of its piece of the particles
+    // Drawn below (inactive), and the rest: room for the whole piece, the first counts filled.
+    std::vector<Sprite> under_sprites, sprites;
     std::vector<float> under_shade, shade;
+    std::size_t under_count = 0, count = 0;
     std::vector<Eigen::Vector3d> band_x;
     std::vector<double> band_v;
   };

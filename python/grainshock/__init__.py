@@ -58,7 +58,7 @@ class Movie:
     """
 
     def __init__(self, path, *, fps=30.0, width=1920, height=1080, codec="h264", crf=18,
-                 preset="veryfast", **render_options):
+                 preset="ultrafast", **render_options):
         self.path = str(path)
         self._writer = _c._MovieWriter(self.path, width, height, fps=fps, codec=codec, crf=crf,
                                        preset=preset)
