@@ -65,7 +65,6 @@ bool LiveFrames::each(ProgressLine& progress, const char* pass,
       *sim, times_, first, progress, pass,
       [&](std::size_t k) {
         sim->snapshot(snap_);
-        snap_.info.unbounded = physics_.unbounded();
         visit(k, snap_);
       },
       hook);

@@ -162,9 +162,7 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
     sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
     if (stop_requested()) return std::nullopt;
   }
-  Snapshot s = sim->snapshot();
-  s.info.unbounded = c.unbounded();
-  return s;
+  return sim->snapshot();
 }
 
 void write_elastic_comparison(const fs::path& dir, const RunOptions& o, const Snapshot& s) {
@@ -294,8 +292,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
     stopped = !loop->run();
     progress.done();
     if (stopped) {  // a look at the data may want the moment too; a resume removes it
-      Snapshot s = loop->simulation().snapshot();
-      s.info.unbounded = o.plan.physics.unbounded();
+      const Snapshot s = loop->simulation().snapshot();
       write_snapshot(
           (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
           o.plan.snapshots);

@@ -211,7 +211,6 @@ bool RunLoop::run(double until) {
         std::abs(snaps_[next_snap_] - t) <= 1e-12 * std::max(1.0, t)) {
       const double s0 = wall_now();
       sim_->snapshot(snapshot_);
-      snapshot_.info.unbounded = plan_.physics.unbounded();
       write_snapshot((dir_ / "snapshots" / snapshot_name(t, plan_.snapshots.format)).string(),
                      snapshot_, plan_.snapshots, kept_);
       ++next_snap_;

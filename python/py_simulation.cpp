@@ -214,7 +214,6 @@ chunks of events, leaving a valid simulation at the time reached.)")
                 s.sim().active_snapshot(*snap);
               else
                 s.sim().snapshot(*snap);
-              snap->info.unbounded = s.sim().config().unbounded();
             }
             return snap;
           },

@@ -712,6 +712,7 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;
   s.info.seed = config_.seed;
+  s.info.unbounded = medium_ != nullptr;
 }
 
 template <int D>

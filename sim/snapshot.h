@@ -29,8 +29,8 @@ struct SnapshotInfo {
   std::optional<double> density, restitution, cutoff, speed;
   std::optional<std::uint64_t> seed;
   // A snapshot of the unbounded medium: `box` is only the region the engine addresses, almost all
-  // of it never made, so there is no box to frame. Set by whoever takes it from a Simulation of
-  // that medium (the engine does not say), written and read as the XYZ key Medium=unbounded.
+  // of it never made, so there is no box to frame. Set by the engine, written and read as the XYZ
+  // key Medium=unbounded.
   bool unbounded = false;
 
   // A periodic cube of this side in the first `dim` axes (set `dim` first).
