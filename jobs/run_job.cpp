@@ -203,11 +203,14 @@ void use_fig1_job(RunOptions& o) {
   o.png = o.compare_elastic = o.movie = o.movie_inset = true;
 }
 
-std::string run_toml(const RunOptions& o) {
+namespace {
+
+// run.toml around the physics lines given.
+std::string settings_toml(const RunOptions& o, const std::string& physics) {
   std::ostringstream t;
   t << "# grainshock run: every setting that shapes the results.\n"
     << "# Again: grainshock run --config run.toml --out NEW; continue: grainshock resume DIR\n"
-    << physics_toml(o.plan.physics) << "per-decade = " << o.plan.per_decade << "\n"
+    << physics << "per-decade = " << o.plan.per_decade << "\n"
     << "sample-every = " << format_double(o.plan.sample_every) << "\n"
     << "snapshot-format = \"" << to_string(o.plan.snapshots.format) << "\"\n"
     << "snapshot-particles = \"" << (o.plan.snapshots.active_only ? "active" : "all") << "\"\n"
@@ -222,6 +225,16 @@ std::string run_toml(const RunOptions& o) {
   return t.str();
 }
 
+}  // namespace
+
+std::string run_toml(const RunOptions& o) {
+  return settings_toml(o, physics_toml(o.plan.physics));
+}
+
+std::string run_spec(const RunOptions& o) {
+  return settings_toml(o, to_toml(o.plan.physics));
+}
+
 RunResult run_job(const RunOptions& o, bool resume) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
   if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
@@ -233,7 +246,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
   movie.inset = o.movie_inset;
   if (o.movie) check_front_movie(o.plan.physics, movie);
 
-  const std::string spec = run_toml(o);
+  const std::string spec = run_spec(o);
   // Before the set-up, so that Ctrl-C during it stops the run at its first checkpoint.
   install_stop_handlers();
   fs::path dir;
@@ -270,7 +283,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
     dir = prepare_output_dir(o.out, o.force, replaced);
     lock_output_dir(dir);
     remove_leftovers(dir);
-    write_file_atomic(dir / "run.toml", spec);
+    write_file_atomic(dir / "run.toml", run_toml(o));
     loop = std::make_unique<RunLoop>(o.plan, dir, spec);
   }
   loop->checkpoint_every = o.checkpoint_every;

@@ -35,6 +35,10 @@ void use_fig1_job(RunOptions& o);
 
 // run.toml: the physics and the output keys, in flag names.
 std::string run_toml(const RunOptions& o);
+// What a run's checkpoints know it by (RunLoop's spec): run.toml with the box left unstated, as
+// to_toml() leaves it and as every checkpoint held before kicks defaulted to the unbounded
+// medium, so that those resume with no special case.
+std::string run_spec(const RunOptions& o);
 
 struct RunResult {
   bool stopped = false;  // by SIGINT/SIGTERM (sim/stop.h); a resume goes on from the checkpoint

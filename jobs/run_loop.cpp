@@ -52,9 +52,9 @@ void check_plan(const RunPlan& plan, int snapshot_copies) {
     const double rows = c.t_max / plan.sample_every;
     if (rows > kMaxSampleRows)
       throw UsageError("--sample-every " + format_number(plan.sample_every) + ": " +
-                      format_number(rows) + " rows to t-max " + format_number(c.t_max) +
-                      ", more than " + format_number(kMaxSampleRows) + "; use --sample-every " +
-                      format_number(c.t_max / kMaxSampleRows) + " or more");
+                       format_number(rows) + " rows to t-max " + format_number(c.t_max) +
+                       ", more than " + format_number(kMaxSampleRows) + "; use --sample-every " +
+                       format_number(c.t_max / kMaxSampleRows) + " or more");
   }
   check_memory(c, snapshot_copies);
 }
@@ -118,13 +118,7 @@ std::unique_ptr<RunLoop> RunLoop::resume(const RunPlan& plan, const std::filesys
   const std::filesystem::path file =
       checkpoint_to_resume(checkpoint_path(dir), previous_checkpoint_path(dir), "checkpoint");
   CheckpointReader in(file);
-  // A box run's run.toml states its medium since kicks default to the unbounded one; the
-  // checkpoint of a box run made before holds the same lines without it, and resumes.
-  const std::string saved = in.string(), box_line = "medium = \"box\"\n";
-  const std::size_t at = spec.find(box_line);
-  const bool before_default =
-      at != std::string::npos && saved == std::string(spec).erase(at, box_line.size());
-  if (saved != spec && !before_default)
+  if (in.string() != spec)
     throw UserError("the checkpoint '" + file.string() + "' is of another run than '" +
                     (dir / "run.toml").string() + "' describes");
   const auto next = in.value<std::uint64_t>(), next_snap = in.value<std::uint64_t>();

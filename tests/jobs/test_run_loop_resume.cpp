@@ -1,11 +1,13 @@
-// RunLoop::resume and the medium's default: run.toml states the box since kicks default to the
-// unbounded medium, and a box run's checkpoint written before (whose lines do not) still resumes.
+// Resuming a run and the medium's default: run.toml states the box since kicks default to the
+// unbounded medium, while a run's checkpoints know it by run_spec(), which leaves the box
+// unstated as every checkpoint written before did; so a box run checkpointed then resumes.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <string>
 
+#include "jobs/run_job.h"
 #include "jobs/run_loop.h"
 #include "sim/config.h"
 #include "sim/error.h"
@@ -16,24 +18,31 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(RunLoopResume, ABoxCheckpointFromBeforeTheMediumDefaultResumes) {
-  RunPlan plan;
-  plan.physics.particles = 2000;
-  plan.physics.restitution = 0.5;
-  plan.physics.t_max = 50;
+  RunOptions o;
+  o.plan.physics.particles = 2000;
+  o.plan.physics.restitution = 0.5;
+  o.plan.physics.t_max = 50;
+  o.quiet = true;
   const fs::path dir =
       fs::temp_directory_path() / ("gs_run_loop_resume_" + std::to_string(::getpid()));
+  o.out = dir.string();
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string now = "# run\n" + physics_toml(plan.physics);
-  const std::string before = "# run\n" + to_toml(plan.physics);
-  ASSERT_NE(now, before);
-  { RunLoop first(plan, dir, before); }  // writes its first checkpoint
-  auto loop = RunLoop::resume(plan, dir, now);
-  EXPECT_TRUE(loop->run());
+  // The run.toml of a box run before the default had no medium key, and its checkpoints the same
+  // lines; today's run.toml states the box.
+  std::string before = run_toml(o);
+  const std::string box_line = "medium = \"box\"\n";
+  ASSERT_NE(before.find(box_line), std::string::npos);
+  before.erase(before.find(box_line), box_line.size());
+  { RunLoop first(o.plan, dir, before); }  // writes its first checkpoint
+  EXPECT_FALSE(run_job(o, true).stopped);
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
   // Any other difference is still refused.
-  PhysicsConfig other = plan.physics;
-  other.seed = 2;
-  EXPECT_THROW(RunLoop::resume(plan, dir, "# run\n" + physics_toml(other)), UserError);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  { RunLoop first(o.plan, dir, before); }
+  o.plan.physics.seed = 2;
+  EXPECT_THROW(run_job(o, true), UserError);
   fs::remove_all(dir);
 }
 
