@@ -7,6 +7,7 @@
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/exit_code.h"
 #include "apps/progress.h"
 #include "jobs/figures_job.h"
 #include "jobs/plot.h"
@@ -24,59 +25,104 @@ struct FiguresFlags {
 jobs::FiguresMode mode_of(const FiguresFlags& f) {
   if (int(f.quick) + int(f.full) + int(f.tiny) > 1)
     throw UserError("figures: give at most one of --quick, --full, --tiny");
-  return f.full ? jobs::FiguresMode::Full
+  return f.full   ? jobs::FiguresMode::Full
          : f.tiny ? jobs::FiguresMode::Tiny
                   : jobs::FiguresMode::Quick;
 }
 
-void run(FiguresFlags f) {
+void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
+  jobs::FiguresOptions& o = flags.job;
+  add_config_option(sub);
+  sub.add_flag("--quick", flags.quick,
+               "Smaller systems, fewer realisations: < 3 min on 2 cores (default)");
+  sub.add_flag("--full", flags.full,
+               "The paper's sizes (2.5e5 discs, 2e6 spheres) with 12-48 realisations per "
+               "case, and the 3D elastic blast at 4e6 spheres: < 30 min on 2 cores (see "
+               "--estimate)");
+  sub.add_flag("--long", o.long_3d,
+               "Add the long 3D runs (r = 0.1, 0.5; 4e6 spheres, delta = 1e-6, to t = 1e6, 16 "
+               "realisations each): about 25 min on 2 cores; see --long --estimate");
+  sub.add_flag("--limit", o.limit,
+               "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
+               "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
+               "cores, nearly all of it 3D r = 0.95; see --limit --estimate");
+  sub.add_option("--limit-dim", o.limit_dim,
+                 "With --limit, only the cases of this dimension (2: under an hour on 2 cores)");
+  sub.add_flag("--tiny", flags.tiny,
+               "Seconds-long smoke run (tests): every file, meaningless numbers");
+  sub.add_flag(
+      "--estimate", o.estimate,
+      "Only estimate the wall time of the chosen mode from --sample realisations per case");
+  sub.add_option("--sample", o.sample, "Realisations per case for --estimate")
+      ->capture_default_str();
+  sub.add_option("--format", flags.format,
+                 "Figure formats, comma-separated: png, svg, pdf (the .gp scripts write any)")
+      ->capture_default_str();
+  add_output_options(sub, o.out, o.force, o.quiet);
+  sub.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
+  sub.add_option("--seed", o.seed, "Master seed of every ensemble")->capture_default_str();
+}
+
+// Where and how the job runs, not which ensembles it runs: left out of figures.toml.
+constexpr std::string_view kNotSettings[] = {"--threads", "--estimate", "--sample"};
+
+int run(FiguresFlags f, const CLI::App& sub) {
   jobs::FiguresOptions& o = f.job;
   o.mode = mode_of(f);
   o.formats = jobs::parse_plot_formats(f.format);
   o.progress = terminal_progress(o.quiet);
+  o.settings =
+      "# grainshock figures: the job of this folder.\n"
+      "# Again: grainshock figures --config figures.toml --out NEW; continue: grainshock resume "
+      "DIR\n" +
+      settings_toml(sub, kNotSettings);
   const jobs::FiguresResult r = jobs::run_figures_job(o);
-  if (o.quiet || o.estimate) return;
+  if (r.interrupted) {
+    if (!o.estimate)
+      std::fprintf(stderr, "grainshock: interrupted; continue with: grainshock resume %s\n",
+                   r.dir.c_str());
+    return kExitInterrupted;
+  }
+  if (o.quiet || o.estimate) return kExitSuccess;
   std::fprintf(stderr, "grainshock: figures (%s) in %.4g s; report in %s\n", to_string(o.mode),
                r.wall, (r.dir / "report.md").c_str());
   for (const auto& p : r.problems) std::fprintf(stderr, "grainshock: warning: %s\n", p.c_str());
+  return kExitSuccess;
 }
 
 }  // namespace
 
+int resume_figures(const std::filesystem::path& dir, int threads, bool quiet) {
+  const auto file = dir / "figures.toml";
+  CLI::App app;
+  auto* sub = app.add_subcommand("figures");
+  FiguresFlags flags;
+  add_figures_flags(*sub, flags);
+  try {
+    app.parse(std::vector<std::string>{file.string(), "--config", "figures"});
+  } catch (const CLI::ParseError& e) {
+    throw UserError(file.string() + ": " + e.what());
+  }
+  flags.job.out = dir.string();
+  flags.job.resume = true;
+  flags.job.threads = threads;
+  flags.job.quiet = quiet;
+  return run(flags, *sub);
+}
+
 void add_figures_command(CLI::App& app) {
   auto flags = std::make_shared<FiguresFlags>();
-  jobs::FiguresOptions* opt = &flags->job;
   auto* sub =
       app.add_subcommand("figures", "Reproduce the paper's Figs. 1-5 and a report with numbers");
-  sub->add_flag("--quick", flags->quick,
-                "Smaller systems, fewer realisations: < 3 min on 2 cores (default)");
-  sub->add_flag("--full", flags->full,
-                "The paper's sizes (2.5e5 discs, 2e6 spheres) with 12-48 realisations per "
-                "case, and the 3D elastic blast at 4e6 spheres: < 30 min on 2 cores (see "
-                "--estimate)");
-  sub->add_flag("--long", opt->long_3d,
-                "Add the long 3D runs (r = 0.1, 0.5; 4e6 spheres, delta = 1e-6, to t = 1e6, 16 "
-                "realisations each): about 25 min on 2 cores; see --long --estimate");
-  sub->add_flag("--limit", opt->limit,
-                "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
-                "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
-                "cores, nearly all of it 3D r = 0.95; see --limit --estimate");
-  sub->add_option("--limit-dim", opt->limit_dim,
-                  "With --limit, only the cases of this dimension (2: under an hour on 2 cores)");
-  sub->add_flag("--tiny", flags->tiny,
-                "Seconds-long smoke run (tests): every file, meaningless numbers");
-  sub->add_flag(
-      "--estimate", opt->estimate,
-      "Only estimate the wall time of the chosen mode from --sample realisations per case");
-  sub->add_option("--sample", opt->sample, "Realisations per case for --estimate")
-      ->capture_default_str();
-  sub->add_option("--format", flags->format,
-                  "Figure formats, comma-separated: png, svg, pdf (the .gp scripts write any)")
-      ->capture_default_str();
-  add_output_options(*sub, opt->out, opt->force, opt->quiet);
-  sub->add_option("--threads", opt->threads, "Worker threads")->capture_default_str();
-  sub->add_option("--seed", opt->seed, "Master seed of every ensemble")->capture_default_str();
-  sub->callback([flags] { run(*flags); });
+  add_figures_flags(*sub, *flags);
+  sub->footer(
+      "A job stopped by Ctrl-C or killed goes on from the realisations it finished with "
+      "grainshock resume DIR, to the same files as a job never stopped (figures.toml holds its "
+      "settings).");
+  sub->callback([flags, sub] {
+    const int rc = run(*flags, *sub);
+    if (rc != kExitSuccess) throw Exit{rc};
+  });
 }
 
 }  // namespace gs::app

@@ -1,6 +1,6 @@
 // `grainshock resume DIR`: continues a run folder from its last checkpoint (jobs/run_job.h), a
-// movie folder from its (jobs/movie.h), or an unfinished ensemble folder from its finished
-// realisations (jobs/ensemble_job.h).
+// movie folder from its (jobs/movie.h), or an unfinished ensemble or figures folder from its
+// finished realisations (jobs/ensemble_job.h, jobs/figures_job.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "apps/exit_code.h"
 #include "apps/progress.h"
 #include "apps/run_flags.h"
+#include "jobs/figures_job.h"
 
 namespace gs::app {
 
@@ -27,13 +28,14 @@ void add_resume_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
       "resume",
-      "Continue a run or movie folder from its last checkpoint, or an unfinished ensemble "
-      "folder, after Ctrl-C or a kill");
-  sub->add_option("DIR", opt->dir, "The run, movie or ensemble folder (as given to --out)")
+      "Continue a run or movie folder from its last checkpoint, or an unfinished ensemble or "
+      "figures folder, after Ctrl-C or a kill");
+  sub->add_option("DIR", opt->dir,
+                  "The run, movie, ensemble or figures folder (as given to --out)")
       ->required();
   sub->add_flag("--quiet", opt->quiet, "Nothing on stderr but errors");
   add_checkpoint_option(*sub, opt->checkpoint_every);
-  sub->add_option("--threads", opt->threads, "Ensemble folders: worker threads")
+  sub->add_option("--threads", opt->threads, "Ensemble and figures folders: worker threads")
       ->capture_default_str();
   sub->footer(
       "The run goes on from its checkpoint with the settings of DIR/run.toml and ends with the "
@@ -43,11 +45,18 @@ void add_resume_command(CLI::App& app) {
       "is truncated, corrupt or from another version or build. An ensemble folder (with "
       "ensemble.toml) runs only its missing realisations, to the same files as an ensemble "
       "never stopped. A movie folder (with movie.toml) goes on from its checkpoint and ends "
-      "with the frames of a movie never stopped (its parts joined without encoding again).");
+      "with the frames of a movie never stopped (its parts joined without encoding again). An "
+      "unfinished figures folder (with figures.toml) runs only the realisations its "
+      "cases have not finished, then the figures and report of a job never stopped.");
   sub->callback([opt] {
     const std::filesystem::path dir(opt->dir);
     if (is_movie_folder(dir)) {
       const int rc = resume_movie(dir, opt->quiet, opt->checkpoint_every);
+      if (rc != 0) throw Exit{rc};
+      return;
+    }
+    if (std::filesystem::exists(dir / "figures.toml")) {
+      const int rc = resume_figures(dir, opt->threads, opt->quiet);
       if (rc != 0) throw Exit{rc};
       return;
     }

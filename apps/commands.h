@@ -19,6 +19,9 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
 void add_ensemble_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_figures_command(CLI::App& app);
+// For `grainshock resume DIR` of a figures folder (jobs::is_unfinished_figures_folder): the job
+// of its figures.toml, on `threads`; returns the exit code.
+int resume_figures(const std::filesystem::path& dir, int threads, bool quiet);
 void add_compare_command(CLI::App& app);
 
 }  // namespace gs::app

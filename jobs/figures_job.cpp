@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <fstream>
 #include <sstream>
 
 #include "analysis/ensemble_output.h"
@@ -74,33 +75,66 @@ double collision_growth(const Table& ts) {
   return std::log(c.back() / c[k]) / std::log(t_end / t[k]);
 }
 
+// Where case `c` keeps its finished realisations until the report is written, and the file
+// there that says which ensemble they belong to (its spec, as this build plans it).
+fs::path realisations_dir(const fs::path& dir, const FigureCase& c) {
+  return dir / "ensembles" / c.name / "realisations";
+}
+constexpr const char* kCaseSpecFile = "case.toml";
+
+// Makes case `c`'s realisations folder, or checks that the one a stopped job left holds
+// realisations of the same ensemble: another version may plan the case otherwise.
+fs::path case_realisations(const fs::path& dir, const FigureCase& c) {
+  const fs::path rdir = realisations_dir(dir, c);
+  const std::string spec = spec_toml(c.spec);
+  std::error_code ec;
+  if (fs::exists(rdir / kCaseSpecFile, ec)) {
+    std::ifstream in(rdir / kCaseSpecFile);
+    std::stringstream held;
+    held << in.rdbuf();
+    if (held.str() != spec)
+      throw UserError(rdir.string() + ": holds realisations of another plan of case " + c.name +
+                      " (from another version of grainshock): start again with --force");
+    return rdir;
+  }
+  fs::create_directories(rdir, ec);
+  if (ec) throw UserError("cannot create '" + rdir.string() + "': " + ec.message());
+  write_file_atomic(rdir / kCaseSpecFile, spec);
+  return rdir;
+}
+
 // The job: every case of the plan, then crossovers, comparisons, figures, summary.json and
-// report.md into `dir`. The estimate runs the same pass on a sampled plan.
+// report.md into `dir`; realisations found in `dir` are read instead of run (resume). The
+// estimate runs the same pass on a sampled plan.
 FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir,
                        PassCosts* costs) {
   const auto t0 = Clock::now();
   std::vector<CaseResult> results;
-  std::uint64_t total = 0, done_before = 0;
+  std::uint64_t total = 0, done_before = 0, resumed = 0;
   for (const auto& c : plan.cases) total += c.spec.realisations;
   const auto progress = open_progress(o.progress);
   std::vector<Comparison> cmp;
   for (const auto& c : plan.cases) {
     RunnerOptions ro;
     ro.threads = c.threads_of(o.threads);
+    ro.realisations_dir = case_realisations(dir, c);
+    const std::uint64_t held = finished_realisations(ro.realisations_dir, c.spec).size();
     ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
-      progress->update(double(done_before + done) / double(total),
-                       c.name + ": " + std::to_string(done) + " of " +
+      progress->update(double(done_before + held + done) / double(total),
+                       c.name + ": " + std::to_string(held + done) + " of " +
                            std::to_string(c.spec.realisations) + " realisations");
     };
     const Meter run_meter;
     RunnerResult r = run_ensemble(c.spec, ro);
-    if (r.interrupted)
-      throw UserError("interrupted; the ensembles finished so far are in " + dir.string());
+    if (r.interrupted) {
+      progress->done();
+      return {dir, seconds_since(t0), {}, true};
+    }
     const Cost run_cost = run_meter.read();
+    resumed += r.resumed;
     const Meter fit_meter;
     done_before += c.spec.realisations;
     const auto edir = dir / "ensembles" / c.name;
-    fs::create_directories(edir);
     CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
     if (!c.delta_scan) {
@@ -137,7 +171,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
   }
   cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
-  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, plan.fig1};
+  const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, resumed, plan.fig1};
   write_figures_summary(dir, run, results, cmp, problems);
   write_figures_report(dir, run, results, x, cmp, problems);
   if (costs) costs->figures = figure_meter.read();
@@ -155,7 +189,8 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
 // 242 run; scaling the fits by M / sample too gave 22.5 and 324. From CPU time, which another
 // program on the machine changes least, that is the wall time on a quiet machine with `threads`
 // cores; from wall time, on this machine as loaded now.
-void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir) {
+// False if stopped (SIGINT/SIGTERM) before the sample finished.
+bool estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& dir) {
   FiguresPlan sampled = plan;
   for (auto& c : sampled.cases) {
     c.spec.realisations = std::min<std::uint64_t>(c.spec.realisations, std::uint64_t(o.sample));
@@ -170,8 +205,9 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   PassCosts costs;
   FiguresOptions so = o;
   so.progress = {};
-  run_pass(so, sampled, scratch, &costs);
+  const bool stopped = run_pass(so, sampled, scratch, &costs).interrupted;
   fs::remove_all(scratch);
+  if (stopped) return false;
 
   Json j;
   j["mode"] = to_string(plan.mode);
@@ -270,7 +306,12 @@ void estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
                  "grainshock: estimated %.4g CPU-s: %.4g s (%.3g min) wall on a quiet %d-core "
                  "machine, %.4g s at this load\n",
                  total_cpu, total_quiet, total_quiet / 60, o.threads, total);
+  return true;
 }
+
+// What a figures job writes that a new job in the same folder (--force) must not find.
+constexpr const char* kReplaced[] = {"ensembles", "estimate_sample", "figures.toml", "report.md",
+                                     "summary.json"};
 
 }  // namespace
 
@@ -280,19 +321,41 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
   if (o.limit_dim != 0 && o.limit_dim != 2 && o.limit_dim != 3)
     throw UsageError("--limit-dim must be 2 or 3");
   if (o.limit_dim != 0 && !o.limit) throw UsageError("--limit-dim needs --limit");
+  if (o.resume && o.estimate) throw UsageError("an estimate cannot be resumed");
   const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim);
   FiguresResult out;
-  out.dir = prepare_output_dir(o.out, o.force);
+  if (o.resume) {
+    out.dir = o.out;
+    if (!is_unfinished_figures_folder(out.dir))
+      throw UserError("'" + o.out + "' holds no unfinished figures job (figures.toml without " +
+                      "report.md): nothing to resume");
+    lock_output_dir(out.dir);
+    remove_leftovers(out.dir);
+  } else {
+    if (!o.force && is_unfinished_figures_folder(o.out))
+      throw UserError("--out " + o.out + ": holds an unfinished figures job; continue it with: " +
+                      "grainshock resume " + o.out + ", or use --force to start again");
+    out.dir = prepare_output_dir(o.out, o.force, kReplaced);
+    lock_output_dir(out.dir);  // a resume of it meanwhile would run the same realisations
+  }
   const fs::path& dir = out.dir;
   install_stop_handlers();
   const auto t0 = Clock::now();
   if (o.estimate) {
-    estimate(o, plan, dir);
+    out.interrupted = !estimate(o, plan, dir);
     out.wall = seconds_since(t0);
     return out;
   }
+  if (!o.resume && !o.settings.empty()) write_file_atomic(dir / "figures.toml", o.settings);
+  out = run_pass(o, plan, dir, nullptr);
+  if (!out.interrupted)  // finished: the ensembles' folders hold what the realisations gave
+    for (const auto& c : plan.cases) fs::remove_all(realisations_dir(dir, c));
+  return out;
+}
 
-  return run_pass(o, plan, dir, nullptr);
+bool is_unfinished_figures_folder(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / "figures.toml", ec) && !fs::exists(dir / "report.md", ec);
 }
 
 }  // namespace gs::jobs

@@ -27,16 +27,30 @@ struct FiguresOptions {
   std::uint64_t seed = 1;
   std::vector<std::string> formats{"png"};  // of the figures (the .gp scripts write any)
   ProgressFactory progress;                 // the line of the ensembles; none by default
+  // The command's settings as TOML, written to figures.toml (not by --estimate) so that the
+  // job can be resumed after a kill; the command line rereads it (`grainshock resume`).
+  std::string settings;
+  // Go on with the unfinished job in `out`: the realisations it finished are read, not run.
+  bool resume = false;
 };
 
 struct FiguresResult {
   std::filesystem::path dir;          // the output folder
   double wall = 0;                    // seconds, ensembles and figures (or the estimate)
   std::vector<std::string> problems;  // figures that could not be drawn, for a warning each
+  bool interrupted = false;           // SIGINT/SIGTERM: resume the folder to finish it
 };
 
-// Checks the options (UserError naming the flag), prepares the folder and runs the job.
-// UserError on SIGINT/SIGTERM, naming the folder that holds the ensembles finished so far.
+// Checks the options (UserError naming the flag), prepares the folder and runs the job. Each
+// case keeps its finished realisations in DIR/ensembles/NAME/realisations until the report is
+// written, so that a job stopped (interrupted) or killed goes on from them with `resume`: the
+// same files as a job never stopped (the ensembles' exact sums do not depend on which process
+// ran a realisation), the --limit runs of days included. Refused: a new job into a folder that
+// holds an unfinished one (unless `force`), a resume of a folder that does not, and a resume
+// whose cases this build plans otherwise than the build that started it.
 FiguresResult run_figures_job(const FiguresOptions& o);
+
+// Whether `dir` holds a figures job that has not written its report.
+bool is_unfinished_figures_folder(const std::filesystem::path& dir);
 
 }  // namespace gs::jobs

@@ -175,6 +175,7 @@ void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& r
   j["threads"] = run.threads;
   j["wall_seconds"] = run.wall;
   j["simulation_wall_seconds"] = run.simulation_wall;
+  j["resumed_realisations"] = run.resumed;
   Json& cases = j["cases"] = Json::array();
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
@@ -207,7 +208,12 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << "Jabeen, Rajesh, Ray, EPL 2010, reproduced by `grainshock figures --" << to_string(run.mode)
      << " --threads " << run.threads << " --seed " << run.seed << "` in "
      << figure_number(run.wall, 4) << " s wall (" << figure_number(run.simulation_wall, 4)
-     << " s of simulation).\n\n## Summary\n\n"
+     << " s of simulation)."
+     << (run.resumed > 0 ? " Resumed after a stop: " + std::to_string(run.resumed) +
+                               " realisations were read from the earlier process's folders, "
+                               "whose time the walls do not count."
+                         : std::string())
+     << "\n\n## Summary\n\n"
      << comparison_summary_markdown(cmp) << "\n## Runs\n\n"
      << "| case | d | r | delta | N | t_max (sim) | t_max (paper) | realisations | wall (s) | "
         "t_c1 (sim t) | t_c1, b = theory (sim t) | t_c2 (sim t) | R_front / (L/2) at t_max |\n"

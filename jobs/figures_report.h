@@ -17,7 +17,10 @@ struct FiguresRun {
   std::uint64_t seed = 1;
   int threads = 1;
   double wall = 0, simulation_wall = 0;  // seconds: all of it, and the ensembles alone
-  FiguresPlan::Fig1 fig1;                // what Fig. 1 shows, for the list of files
+  // Realisations read from the folders of an earlier, stopped process (resume), whose time the
+  // walls do not count.
+  std::uint64_t resumed = 0;
+  FiguresPlan::Fig1 fig1;  // what Fig. 1 shows, for the list of files
 };
 
 void write_figures_summary(const std::filesystem::path& dir, const FiguresRun& run,
