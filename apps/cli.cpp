@@ -242,7 +242,8 @@ void add_physics_options(CLI::App& sub, PhysicsConfig& c) {
                   "kick: one particle moves; thermal: a Maxwell gas")
       ->option_text("kick|thermal (kick)");
   add_word_option(sub, "--kick-site", c.kick_site, parse_kick_site,
-                  "Which particle is kicked: random or the one nearest the centre")
+                  "Which particle of the box is kicked: random or the one nearest the centre "
+                  "(the unbounded medium, the same everywhere, kicks the one nearest its origin)")
       ->option_text("random|centre (random)");
   add_word_option(sub, "--medium", c.medium, parse_medium,
                   "box: N particles in a periodic box; unbounded: the gas at rest made where the "

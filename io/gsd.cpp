@@ -239,6 +239,13 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   if (!t) t = find(k, "log/grainshock/time", false);
   if (t && t->n * t->m == 1) s.info.time = values(*t)[0];
   s.info.has_time = t && t->n * t->m == 1;
+  // A snapshot of the unbounded medium (SnapshotInfo::unbounded): its box is only the grid the
+  // engine addresses, which a reader must not frame.
+  if (const Entry* e = find(k, "log/Unbounded")) {
+    const std::vector<double> v = values(*e);
+    if (v.size() != 1 || (v[0] != 0 && v[0] != 1)) bad("log/Unbounded is not one 0 or 1");
+    s.info.unbounded = v[0] == 1;
+  }
   std::vector<double> box = {1, 1, 1, 0, 0, 0};
   if (const Entry* e = find(k, "configuration/box")) {
     if (e->n * e->m != 6) bad("configuration/box does not have 6 values");
@@ -419,6 +426,9 @@ struct Writer {
     // OVITO makes a global attribute of each log/NAME chunk (one slash): log/Time is its Time,
     // and gsd.hoomd's frame.log['Time'].
     if (s.info.has_time) chunk("log/Time", F64, 1, 1, std::vector<double>{s.info.time});
+    // Only when set, so that box snapshots keep their bytes (OVITO shows it as attribute
+    // Unbounded).
+    if (s.info.unbounded) chunk("log/Unbounded", U8, 1, 1, std::vector<std::uint8_t>{1});
     ++frame;
   }
 

@@ -90,6 +90,19 @@ TEST(Gsd, OurWriterReadsBack) {
   EXPECT_EQ(t.first_collision, s.first_collision);
 }
 
+// A snapshot of the unbounded medium says so (log/Unbounded, as XYZ's Medium=unbounded), so that
+// no reader frames its grid as a box; a box snapshot's bytes do not change.
+TEST(Gsd, TheUnboundedMediumIsMarked) {
+  const auto path = out_path("unbounded.gsd");
+  Snapshot s = sample();
+  write_gsd(path, s);
+  EXPECT_EQ(slurp(path).find("log/Unbounded"), std::string::npos);
+  EXPECT_FALSE(read_snapshot(path).info.unbounded);
+  s.info.unbounded = true;
+  write_gsd(path, s);
+  EXPECT_TRUE(read_snapshot(path).info.unbounded);
+}
+
 // Chunks at the schema's defaults (image 0, diameter 1) are not written; reading gives the same.
 TEST(Gsd, DefaultChunksAreLeftOut) {
   Snapshot s = sample();
