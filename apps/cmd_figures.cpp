@@ -47,7 +47,7 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
                "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
                "cores, nearly all of it 3D r = 0.95; see --limit --estimate");
   sub.add_option("--limit-dim", o.limit_dim,
-                 "With --limit, only the cases of this dimension (2: under an hour on 2 cores)");
+                 "With --limit, only the cases of this dimension (2: about 1.2 h on 2 cores)");
   sub.add_flag("--tiny", flags.tiny,
                "Seconds-long smoke run (tests): every file, meaningless numbers");
   sub.add_flag(

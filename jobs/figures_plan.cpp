@@ -142,7 +142,14 @@ std::vector<Long3D> long3d_cases() {
 // a percentile interval over M realisations is set by single realisations below M ~ 8 (8 gives
 // 6435 distinct resamples); 12 in 3D r = 0.9 as --full's added 3D r, 8 at 0.95 (each costs ~5
 // times more); 2D as --full's 0.9 and 0.95 (32, 24), being cheap.
-// --estimate runs each sample to t_max / 30 (1.5 decades short, past t_c1 in every case).
+// --estimate runs each 3D sample to t_max / 30 (1.5 decades short, past t_c1 in every case) and
+// each 2D one to t_max / 3: in 2D the collisions' growth g = d ln C / d ln t rises late, from
+// 1.16-1.21 over 3e3-3e4 to 1.44 at 1e5 and 1.66 at 3e5, at the same times for r = 0.9 and
+// 0.95 (one realisation each, `run --dim 2 --medium unbounded --particles 2e6 --cutoff 1e-6`),
+// so that a sample to t_max / 30 extrapolated with its own g missed by 3.4x (r = 0.95: 316
+// CPU-s per realisation to 1.6e6, 2.35e8 collisions, peak RSS 272 MB, at load 5-8, where 92
+// were estimated; r = 0.9: 17.4 CPU-s to 4e5, 2.2e7 collisions). A third of t_max costs a 2D
+// sample about a sixth of a realisation.
 // `figures --limit --estimate` (sample 2, load ~3.4): 2.24e5 CPU-s, 60 h on a quiet 2-core
 // machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per realisation, one at a time; the sample
 // to 2.17e5 took 358 per realisation, its collisions growing as t^1.26), 3D r = 0.9 1.5e4, 2D
@@ -156,6 +163,7 @@ struct LimitCase {
   double plateau_start, t_max;
   std::uint64_t realisations;
   int concurrent = 0;  // FigureCase::concurrent
+  double estimate_fraction = 1.0 / 30;  // --estimate samples to t_max times this
 };
 std::vector<LimitCase> limit_cases(FiguresMode m) {
   if (m == FiguresMode::Tiny)  // smoke run: every file, no plateau
@@ -163,13 +171,12 @@ std::vector<LimitCase> limit_cases(FiguresMode m) {
             {2, 0.95, 50000, 0, 1500, 3},
             {3, 0.9, 100000, 0, 600, 3},
             {3, 0.95, 100000, 0, 600, 3}};
-  return {{2, 0.9, 2000000, 1e5, 4e5, 32},
-          {2, 0.95, 2000000, 4.5e5, 1.6e6, 24},
+  return {{2, 0.9, 2000000, 1e5, 4e5, 32, 0, 1.0 / 3},
+          {2, 0.95, 2000000, 4.5e5, 1.6e6, 24, 0, 1.0 / 3},
           {3, 0.9, 25000000, 3.5e5, 1.2e6, 12},
           {3, 0.95, 50000000, 1.9e6, 6.5e6, 8, 1}};
 }
 constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
-constexpr double kLimitEstimateFraction = 1.0 / 30;
 
 // The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
@@ -315,7 +322,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
               .append("_limit"),
           e, CaseRole::Limit);
       plan.cases.back().plateau_start = s.plateau_start;
-      plan.cases.back().estimate_t_max = s.t_max * kLimitEstimateFraction;
+      plan.cases.back().estimate_t_max = s.t_max * s.estimate_fraction;
       plan.cases.back().concurrent = s.concurrent;
     }
   }
