@@ -24,6 +24,9 @@ constexpr double kPackingElasticTolerance = 0.05;
 constexpr double kPhi1[2] = {2.25, 3.0};  // "phi1 ~ 2.25 in two dimensions and ~3.0 in three"
 // The paper quotes phi1 to two figures from three values of r; 0.5 is a quarter of the 2D value.
 constexpr double kPhi1Tolerance = 0.5;
+// A value more than 3 standard errors from a phi1 reading (outside 99.7% of its sampling
+// distribution) is excluded by it; when both on offer are, the odds between them mean nothing.
+constexpr double kPhi1Excluded = 3;
 constexpr double kPhi2Tolerance = 0.3;
 // alpha: the bootstrap interval is the uncertainty; 0.02 floors it where the interval is
 // narrower than the systematic drift a plateau of +-0.02 in the local slope allows.
@@ -352,6 +355,31 @@ Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossover
   c.note = "-d ln t_c1 / d ln(1 - r^2) between " + e.from + " and " + e.to +
            "; uncertainty: half width of the 95% bootstrap interval";
   return c;
+}
+
+Phi1Weighing weigh_phi1(int d, double phi, double ci_lo, double ci_hi) {
+  Phi1Weighing w;
+  w.paper = kPhi1[d == 2 ? 0 : 1];
+  w.scaling = phi1_scaling_estimate(d);
+  if (!(std::isfinite(phi) && ci_lo < phi && phi < ci_hi)) return w;
+  auto z = [&](double v) {
+    return v >= phi ? (v - phi) / ((ci_hi - phi) / 1.96) : (phi - v) / ((phi - ci_lo) / 1.96);
+  };
+  w.z_paper = z(w.paper);
+  w.z_scaling = z(w.scaling);
+  const double near = std::min(w.z_paper, w.z_scaling), far = std::max(w.z_paper, w.z_scaling);
+  w.odds = std::exp(0.5 * (far * far - near * near));
+  if (near > kPhi1Excluded) {
+    w.favoured = "neither";
+    w.strength = "both excluded";
+    return w;
+  }
+  w.favoured = w.z_paper <= w.z_scaling ? "paper" : "scaling";
+  w.strength = w.odds < 3     ? "not worth more than a bare mention"
+               : w.odds < 20  ? "positive"
+               : w.odds < 150 ? "strong"
+                              : "very strong";
+  return w;
 }
 
 Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& readings, double level) {

@@ -103,6 +103,26 @@ Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossover
 Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& readings, double level);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
 
+// A phi1 reading nearest the elastic limit (phi with its 95% interval [ci_lo, ci_hi]) weighed
+// between the two values on offer: the paper's (2.25, 3.0) and the scaling estimate (d + 2)/2
+// (2, 2.5; analysis/energy_scaling.h). Each value's distance from the reading counts standard
+// errors on its own side of the interval, sigma = (ci_hi - phi) / 1.96 above and
+// (phi - ci_lo) / 1.96 below (percentile intervals may be lopsided); the odds are the
+// likelihood ratio exp((z_other^2 - z_near^2) / 2) of the nearer value over the other under a
+// normal sampling distribution, in the words of Kass and Raftery (J. Am. Stat. Assoc. 90, 773,
+// 1995: below 3 not worth more than a bare mention, 3-20 positive, 20-150 strong, above that
+// very strong); "neither" when both values lie more than 3 standard errors away. Sampling
+// error only: a pair of r still short of the limit is a systematic error the odds do not see.
+struct Phi1Weighing {
+  double paper = 0, scaling = 0;
+  double z_paper = std::numeric_limits<double>::quiet_NaN();
+  double z_scaling = std::numeric_limits<double>::quiet_NaN();
+  double odds = std::numeric_limits<double>::quiet_NaN();  // >= 1, for `favoured`
+  std::string favoured;  // "paper", "scaling", "neither", or empty without an interval
+  std::string strength;
+};
+Phi1Weighing weigh_phi1(int d, double phi, double ci_lo, double ci_hi);
+
 // The comparisons as a JSON array (summary.json of the figures job).
 Json comparisons_json(const std::vector<Comparison>& cmp);
 // The counted comparisons (the sensitivity readings go to sensitivity_markdown).

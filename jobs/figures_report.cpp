@@ -96,6 +96,57 @@ std::string energy_phi1_markdown(const Crossovers& crossovers) {
   return md.str();
 }
 
+// phi1 nearest the elastic limit by each reading, weighed between the paper's value and the
+// scaling estimate (analysis/paper.h, weigh_phi1): the question, answered per reading.
+std::string phi1_limit_markdown(const Crossovers& crossovers) {
+  std::ostringstream md;
+  md << "### phi1 nearest the elastic limit: which value the data favour\n\n"
+        "Each reading's estimate from the pair of r nearest r = 1 that gives one, weighed "
+        "between the paper's value and the scaling estimate (d + 2)/2: z is each value's "
+        "distance from the estimate in standard errors (from the 95% interval on that value's "
+        "side), the odds the likelihood ratio of the nearer value over the other, in the words "
+        "of Kass and Raftery (1995). The first row of each d is the declared reading. The "
+        "odds count sampling error only: a pair short of the limit, or readings that disagree "
+        "with one another, are systematic errors they do not see.\n\n"
+        "| d | reading | between | phi1 | 95% interval | z, paper | z, (d + 2)/2 | favoured | "
+        "odds | strength |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  auto row = [&](int d, const std::string& reading, const std::string& from, const std::string& to,
+                 double phi, double lo, double hi) {
+    const Phi1Weighing w = weigh_phi1(d, phi, lo, hi);
+    md << "| " << d << " | " << reading << " | " << from << " and " << to << " | "
+       << figure_number(phi, 3) << " | [" << figure_number(lo, 3) << ", " << figure_number(hi, 3)
+       << "] | " << figure_number(w.z_paper, 3) << " (" << w.paper << ") | "
+       << figure_number(w.z_scaling, 3) << " (" << w.scaling << ") | "
+       << (w.favoured == "paper"     ? "paper's " + figure_number(w.paper, 3)
+           : w.favoured == "scaling" ? "(d + 2)/2 = " + figure_number(w.scaling, 3)
+           : w.favoured.empty()      ? std::string("-")
+                                     : w.favoured)
+       << " | " << figure_number(w.odds, 3) << " | " << (w.strength.empty() ? "-" : w.strength)
+       << " |\n";
+  };
+  for (const auto& set : crossovers.tc1) {
+    std::vector<double> kinds{std::nan("")};
+    for (double level : Phi1Options{}.levels) kinds.push_back(level);
+    for (double level : kinds) {
+      const Phi1Reading* last = nullptr;
+      for (const auto& p : set.energy)
+        if ((std::isnan(level) ? std::isnan(p.level) : p.level == level) && std::isfinite(p.phi))
+          last = &p;
+      const std::string name = std::isnan(level) ? "E_t/E_0 collapse (declared)"
+                                                 : "time to E_0 x " + figure_number(level, 2);
+      if (last)
+        row(set.d, name, last->from, last->to, last->phi, last->ci_lo, last->ci_hi);
+      else
+        md << "| " << set.d << " | " << name << " | - | n/a | - | - | - | - | - | - |\n";
+    }
+    if (!set.local.empty()) {
+      const auto& e = set.local.back();
+      row(set.d, "intersection rule", e.from, e.to, e.phi, e.ci_lo, e.ci_hi);
+    }
+  }
+  return md.str();
+}
+
 // Every exponent of every case with its plateau and the local slope's drift across it.
 std::string plateau_markdown(const std::vector<CaseResult>& results) {
   std::ostringstream md;
@@ -250,7 +301,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << sensitivity_markdown(cmp) << "\n"
      << plateau_markdown(results) << "\n"
      << local_phi1_markdown(crossovers) << "\n"
-     << energy_phi1_markdown(crossovers) << "\n## Definitions\n\n"
+     << energy_phi1_markdown(crossovers) << "\n"
+     << phi1_limit_markdown(crossovers) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";

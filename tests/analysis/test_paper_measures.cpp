@@ -518,5 +518,35 @@ TEST(CrossoverExponents, DeclaredPhi1IsTheCollapseOfThePairNearestTheLimit) {
   EXPECT_FALSE(phi1_energy_comparison(2, {}, nan).measured_ok());
 }
 
+// Weighing a phi1 reading between the paper's value and (d + 2)/2: the nearer value in
+// standard errors is favoured, with the likelihood ratio of the two; worked by hand: 2.05
+// [1.90, 2.20] in 2D puts 2 at 0.05 / (0.15 / 1.96) = 0.653 sigma and 2.25 at 2.613, odds
+// exp((2.6133^2 - 0.6533^2) / 2) = 24.57 ("strong").
+TEST(Phi1Weighing, FavoursTheNearerValueWithItsLikelihoodRatio) {
+  const Phi1Weighing w = weigh_phi1(2, 2.05, 1.90, 2.20);
+  EXPECT_EQ(w.paper, 2.25);
+  EXPECT_EQ(w.scaling, 2.0);
+  EXPECT_NEAR(w.z_scaling, 0.6533, 1e-3);
+  EXPECT_NEAR(w.z_paper, 2.6133, 1e-3);
+  EXPECT_EQ(w.favoured, "scaling");
+  EXPECT_NEAR(w.odds, 24.57, 0.01);
+  EXPECT_EQ(w.strength, "strong");
+  // The same interval about the paper's value favours the paper's value.
+  EXPECT_EQ(weigh_phi1(2, 2.25, 2.10, 2.40).favoured, "paper");
+  // 3D: 3.0 and 2.5; a lopsided interval measures each value on its own side: 2.7 [2.6, 3.3]
+  // has sigma 0.306 above (3.0 at 0.98) and 0.051 below (2.5 at 3.92).
+  const Phi1Weighing l = weigh_phi1(3, 2.7, 2.6, 3.3);
+  EXPECT_EQ(l.favoured, "paper");
+  EXPECT_NEAR(l.z_paper, 0.98, 1e-2);
+  EXPECT_NEAR(l.z_scaling, 3.92, 1e-2);
+  EXPECT_EQ(l.strength, "very strong");
+  // Midway the odds are even and not worth a mention; without an interval nothing is weighed.
+  EXPECT_EQ(weigh_phi1(2, 2.125, 1.9, 2.35).strength, "not worth more than a bare mention");
+  EXPECT_TRUE(weigh_phi1(2, 2.1, std::nan(""), std::nan("")).favoured.empty());
+  // Far from both (3.68 [3.5, 3.94] in 3D: 3.0 at 7.3 sigma, 2.5 at 12.7): neither, whatever
+  // the ratio of two tiny likelihoods says.
+  EXPECT_EQ(weigh_phi1(3, 3.68, 3.5, 3.94).favoured, "neither");
+}
+
 }  // namespace
 }  // namespace gs
