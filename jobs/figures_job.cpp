@@ -124,6 +124,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
                        c.name + ": " + std::to_string(held + done) + " of " +
                            std::to_string(c.spec.realisations) + " realisations");
     };
+    if (held > 0) ro.on_progress(0, 0);  // resumed: the line shows what was read back
     const Meter run_meter;
     RunnerResult r = run_ensemble(c.spec, ro);
     if (r.interrupted) {
