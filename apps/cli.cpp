@@ -213,6 +213,15 @@ CLI::Validator png_name() {
       "FILE.png", "PNG name");
 }
 
+void parse_settings_file(CLI::App& app, const std::string& command,
+                         const std::filesystem::path& file) {
+  try {
+    app.parse(std::vector<std::string>{file.string(), "--config", command});  // argv reversed
+  } catch (const CLI::ParseError& e) {
+    throw UserError(file.string() + ": " + e.what());
+  }
+}
+
 void add_config_option(CLI::App& sub) {
   auto file = std::make_shared<std::string>();
   sub.add_option("--config", *file, "TOML file of flag = value lines; command-line flags win")

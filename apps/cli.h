@@ -14,6 +14,12 @@ namespace gs::app {
 // Adds --config FILE (TOML, keys = long flag names; flags given on the command line win).
 void add_config_option(CLI::App& sub);
 
+// Parses the settings file a command wrote into its folder (run.toml, movie.toml, figures.toml)
+// as `grainshock COMMAND --config FILE`: `app` holds the subcommand COMMAND with its flags (and
+// --config); UserError naming the file when a value is refused.
+void parse_settings_file(CLI::App& app, const std::string& command,
+                         const std::filesystem::path& file);
+
 // Every option of `sub` that was given or has a default, as TOML lines `name = value` (the long
 // flag name, or a positional argument's name) that --config reads back: the run file of a
 // command whose settings are all flags. Help, version, --config and the output-folder flags

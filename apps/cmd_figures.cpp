@@ -98,11 +98,7 @@ int resume_figures(const std::filesystem::path& dir, int threads, bool quiet) {
   auto* sub = app.add_subcommand("figures");
   FiguresFlags flags;
   add_figures_flags(*sub, flags);
-  try {
-    app.parse(std::vector<std::string>{file.string(), "--config", "figures"});
-  } catch (const CLI::ParseError& e) {
-    throw UserError(file.string() + ": " + e.what());
-  }
+  parse_settings_file(app, "figures", file);
   flags.job.out = dir.string();
   flags.job.resume = true;
   flags.job.threads = threads;

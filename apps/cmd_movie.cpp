@@ -207,11 +207,7 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
   auto* sub = app.add_subcommand("movie");
   MovieJob job;
   add_movie_flags(*sub, job);
-  try {
-    app.parse(std::vector<std::string>{file.string(), "--config", "movie"});
-  } catch (const CLI::ParseError& e) {
-    throw UserError(file.string() + ": " + e.what());
-  }
+  parse_settings_file(app, "movie", file);
   if (!job.files.empty())
     throw UserError("'" + dir.string() +
                     "' holds a movie of stored snapshots, which keeps no checkpoint; make it "

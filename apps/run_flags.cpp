@@ -90,11 +90,7 @@ RunOptions read_run_file(const std::filesystem::path& file) {
   auto* sub = app.add_subcommand("run");
   RunOptions o;
   add_run_flags(*sub, o);
-  try {
-    app.parse(std::vector<std::string>{file.string(), "--config", "run"});
-  } catch (const CLI::ParseError& e) {
-    throw UserError(file.string() + ": " + e.what());
-  }
+  parse_settings_file(app, "run", file);
   apply_fig1_rule(*sub, o);
   // No --medium default here: run.toml states the medium, and one written before the medium
   // existed has no key and ran in the box, PhysicsConfig's own default.
