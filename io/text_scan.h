@@ -124,22 +124,25 @@ template <class Token, class RowDone>
 void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std::size_t first_line,
                const std::string& path, Token&& token, RowDone&& row_done, bool split = false) {
   const char* const end = body.data() + body.size();
+  // Spaces within a line; a token ends at any space (token_end), so the line's end is found by
+  // the tokens themselves, with no pass of its own over the line.
+  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
   auto scan = [&](std::size_t from, std::size_t to, const char* p) {
     for (std::size_t i = from; i < to; ++i) {
       const std::size_t line = first_line + i;
-      const char* eol = p < end ? static_cast<const char*>(std::memchr(p, '\n', end - p)) : end;
-      if (!eol) eol = end;
-      const char* q = p;
+      const char* q = std::min(p, end);
       std::size_t t = 0;
       for (; t < columns; ++t) {
-        while (q < eol && is_space(*q)) ++q;
-        if (q == eol) break;
-        const char* const te = token_end(q, eol);
+        while (q < end && blank(*q)) ++q;
+        if (q == end || *q == '\n') break;
+        const char* const te = token_end(q, end);
         token(i, t, std::string_view(q, te - q), line);
         q = te;
       }
-      while (q < eol && is_space(*q)) ++q;
-      if (t < columns || q != eol) {
+      while (q < end && blank(*q)) ++q;
+      if (t < columns || (q != end && *q != '\n')) {
+        const void* nl = q < end ? std::memchr(q, '\n', end - q) : nullptr;
+        const char* const eol = nl ? static_cast<const char*>(nl) : end;
         std::size_t found = t, j = 0;
         const std::string_view rest(q, eol - q);
         while (!next_token(rest, j).empty()) ++found;
@@ -148,7 +151,7 @@ void scan_rows(std::string_view body, std::size_t rows, std::size_t columns, std
             "expected " + std::to_string(columns) + " columns, found " + std::to_string(found));
       }
       row_done(i, line);
-      p = eol + 1;
+      p = q + 1;
     }
   };
   // Below this a second thread costs more than it saves.
