@@ -122,13 +122,13 @@ std::vector<Figure> fig1_job() {
   std::ifstream f(dir / "timing.json");
   const Json t = Json::parse(f);
   fs::remove_all(dir);
-  return {{"pictures_and_movie_seconds", t["pictures_and_movie_seconds"].get<double>(), "s",
-           "<= 10"},
-          {"movie_during_run_seconds", t["movie_during_run_seconds"].get<double>(), "s", ""},
-          {"run_seconds", t["run_seconds"].get<double>(), "s", ""},
-          {"job_wall_seconds", wall, "s", ""},
-          {"job_cpu_seconds", cpu, "s", ""},
-          {"load_average_1min", load_average(), "", ""}};
+  return {
+      {"pictures_and_movie_seconds", t["pictures_and_movie_seconds"].get<double>(), "s", "<= 10"},
+      {"movie_during_run_seconds", t["movie_during_run_seconds"].get<double>(), "s", ""},
+      {"run_seconds", t["run_seconds"].get<double>(), "s", ""},
+      {"job_wall_seconds", wall, "s", ""},
+      {"job_cpu_seconds", cpu, "s", ""},
+      {"load_average_1min", load_average(), "", ""}};
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "jobs/run_job.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -154,8 +155,9 @@ bool write_pictures(const fs::path& dir, const RunOptions& o) {
 }
 
 // Fig. 1(b): the same gas, kicked the same way, with elastic collisions, at half the final time.
-// Nothing if stopped.
-std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
+// Nothing if stopped, or `abandoned` (the job ended by an error).
+std::optional<Snapshot> run_elastic_comparison(const RunOptions& o,
+                                               const std::atomic<bool>& abandoned) {
   PhysicsConfig c = o.plan.physics;
   c.restitution = 1.0;
   c.t_max = 0.5 * o.plan.physics.t_max;
@@ -163,7 +165,7 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
   auto sim = make_simulation(c);
   while (sim->time() < c.t_max) {
     sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
-    if (stop_requested()) return std::nullopt;
+    if (stop_requested() || abandoned) return std::nullopt;
   }
   return sim->snapshot();
 }
@@ -293,9 +295,16 @@ RunResult run_job(const RunOptions& o, bool resume) {
 
   // The elastic run needs nothing of this one: it takes the second core from the start, while
   // this one samples, draws its movie and its pictures. It polls the same stop flag.
+  // An error in this one abandons it: `abandon` goes before the future, whose end waits for it.
+  std::atomic<bool> abandoned = false;
   std::future<std::optional<Snapshot>> elastic;
+  struct Abandon {
+    std::atomic<bool>& flag;
+    ~Abandon() { flag = true; }
+  } abandon{abandoned};
   if (o.compare_elastic)
-    elastic = std::async(std::launch::async, run_elastic_comparison, std::cref(o));
+    elastic =
+        std::async(std::launch::async, run_elastic_comparison, std::cref(o), std::cref(abandoned));
   const double t_max = o.plan.physics.t_max;
   bool stopped = false;
   double movie_s = 0;
@@ -319,8 +328,8 @@ RunResult run_job(const RunOptions& o, bool resume) {
       const auto events0 = loop->simulation().stats().events;
       loop->on_sample = [&](const Sample& s) {
         char what[160];
-        std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t,
-                      t_max, static_cast<long long>(s.active),
+        std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
+                      static_cast<long long>(s.active),
                       static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
         progress.update(s.t / t_max, what);
       };
@@ -354,7 +363,8 @@ RunResult run_job(const RunOptions& o, bool resume) {
   }
   loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
-  write_file_atomic(dir / "timing.json", timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
+  write_file_atomic(dir / "timing.json",
+                    timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
   if (!o.quiet)
