@@ -132,7 +132,8 @@ FrontMovieResult write_run_movie(RunLoop& loop, const PhysicsConfig& physics,
   Prepared p;
   p.plan = make_live_plan(physics, o);
   GS_CHECK(!p.plan.need_range);
-  RunFrames frames(loop, frame_times(physics, o));
+  // Kept PNGs name the particles of their snapshot; the movie's pictures draw the active ones.
+  RunFrames frames(loop, frame_times(physics, o), !p.plan.style.show_inactive && !o.keep_frames);
   KeptFrames pngs(dir, o.keep_frames);
   render::MovieParts movie(dir / "movie.mp4", o.movie);
   std::optional<render::FollowCamera> follow;

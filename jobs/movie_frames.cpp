@@ -77,7 +77,11 @@ bool RunFrames::each(ProgressLine& progress, const char* pass,
   const auto events0 = sim.stats().events;
   for (std::size_t k = 0; k < times_.size(); ++k) {
     if (!loop_.run_to(times_[k])) return false;
-    sim.snapshot(snap_);
+    // Before the first collision nothing is active, and the moving kicked particle is drawn.
+    if (active_only_ && sim.stats().collisions > 0)
+      sim.active_snapshot(snap_);
+    else
+      sim.snapshot(snap_);
     visit(k, snap_);
     char what[160];
     std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g, %.3g events/s", pass, k + 1,

@@ -65,9 +65,13 @@ class LiveFrames final : public Frames {
 // The frames of a run as its loop reaches their times (jobs/run_loop.h, run_to): one pass, with
 // the run's samples, snapshots and checkpoints between them, so that the run's files are the
 // bytes they are without a movie. A stop ends the pass, the loop having written its checkpoint.
+// With `active_only` (for pictures that draw nothing else), a frame holds only the active
+// particles once there are any (Simulation::active_snapshot, in snapshot()'s order): the same
+// picture, without copying the gas at rest (2.5e5 discs: 4.6 ms a frame).
 class RunFrames final : public Frames {
  public:
-  RunFrames(RunLoop& loop, std::vector<double> times) : loop_(loop), times_(std::move(times)) {}
+  RunFrames(RunLoop& loop, std::vector<double> times, bool active_only)
+      : loop_(loop), times_(std::move(times)), active_only_(active_only) {}
   std::size_t size() const override { return times_.size(); }
   bool each(ProgressLine& progress, const char* pass,
             const std::function<void(std::size_t, const Snapshot&)>& visit) override;
@@ -75,6 +79,7 @@ class RunFrames final : public Frames {
  private:
   RunLoop& loop_;
   std::vector<double> times_;
+  bool active_only_;
   Snapshot snap_;  // reused frame after frame
 };
 
