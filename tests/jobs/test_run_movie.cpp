@@ -46,6 +46,7 @@ TEST(RunMovie, DrawnAsTheRunGoesIsTheReplayedMovie) {
   FrontMovieOptions m;  // as the Fig. 1 job's: 240 frames, 1920x1080, with the inset
   m.inset = true;
   m.quiet = true;
+  m.t_start = 0.01;  // the first frames before the first collision: the kicked disc alone
   ASSERT_TRUE(movie_in_one_pass(plan.physics, m));
 
   const fs::path live = fresh("live"), plain = fresh("plain"), replay = fresh("replay");
