@@ -1,13 +1,16 @@
 // Benchmarks of `grainshock run` around the engine (issue 20): the run loop with its samples,
-// timeseries.csv and snapshots, and its checkpoints.
+// timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole (issue 32).
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
+#include "analysis/json.h"
 #include "bench/bench.h"
 #include "io/checkpoint.h"
+#include "jobs/run_job.h"
 #include "jobs/run_loop.h"
 
 namespace gs::bench {
@@ -101,6 +104,33 @@ std::vector<Figure> checkpoint_2e6() {
           {"read_back_same_state", same, "", "1"}};
 }
 
+// `grainshock run` with no flags: the Fig. 1 job (2.5e5 discs, r = 0.1, to paper time 50000,
+// four snapshots with their pictures and overlay, the elastic comparison, the 240-frame movie
+// with its inset), as the command runs it. The issue's figure is timing.json's pictures-and-movie
+// time (the movie's share of the run's wall time, then everything after sampling); the job's
+// wall and CPU time say what the two cores did in all.
+std::vector<Figure> fig1_job() {
+  const fs::path dir = scratch("fig1");
+  fs::remove_all(dir);
+  jobs::RunOptions o;  // the C++ PhysicsConfig's defaults are the paper's box, as the job's are
+  jobs::use_fig1_job(o);
+  o.out = dir.string();
+  o.quiet = true;
+  const double w0 = wall_seconds(), c0 = cpu_seconds();
+  jobs::run_job(o, false);
+  const double wall = wall_seconds() - w0, cpu = cpu_seconds() - c0;
+  std::ifstream f(dir / "timing.json");
+  const Json t = Json::parse(f);
+  fs::remove_all(dir);
+  return {
+      {"pictures_and_movie_seconds", t["pictures_and_movie_seconds"].get<double>(), "s", "<= 10"},
+      {"movie_during_run_seconds", t["movie_during_run_seconds"].get<double>(), "s", ""},
+      {"run_seconds", t["run_seconds"].get<double>(), "s", ""},
+      {"job_wall_seconds", wall, "s", ""},
+      {"job_cpu_seconds", cpu, "s", ""},
+      {"load_average_1min", load_average(), "", ""}};
+}
+
 }  // namespace
 
 void add_run_cases(std::vector<Case>& cases) {
@@ -112,6 +142,10 @@ void add_run_cases(std::vector<Case>& cases) {
   cases.push_back({"run/checkpoint_2e6",
                    "checkpoint of a 2e6-sphere 3D kick at t = 2e4: write, read", true,
                    checkpoint_2e6});
+  cases.push_back({"run/fig1_job",
+                   "`grainshock run` with no flags (the Fig. 1 job): pictures-and-movie time, "
+                   "wall and CPU time of the whole job",
+                   true, fig1_job});
 }
 
 }  // namespace gs::bench

@@ -123,6 +123,24 @@ FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMov
   return live_movie(physics, o, dir, &checkpoints, true);
 }
 
+bool movie_in_one_pass(const PhysicsConfig& physics, const FrontMovieOptions& o) {
+  return !make_live_plan(physics, o).need_range;
+}
+
+FrontMovieResult write_run_movie(RunLoop& loop, const PhysicsConfig& physics,
+                                 const FrontMovieOptions& o, const std::filesystem::path& dir) {
+  Prepared p;
+  p.plan = make_live_plan(physics, o);
+  GS_CHECK(!p.plan.need_range);
+  // Kept PNGs name the particles of their snapshot; the movie's pictures draw the active ones.
+  RunFrames frames(loop, frame_times(physics, o), !p.plan.style.show_inactive && !o.keep_frames);
+  KeptFrames pngs(dir, o.keep_frames);
+  render::MovieParts movie(dir / "movie.mp4", o.movie);
+  std::optional<render::FollowCamera> follow;
+  render::Renderer renderer(p.plan.backend);
+  return render_pass(frames, p, o, pngs, movie, follow, renderer, "movie", false);
+}
+
 struct StoredMovie::Impl {
   Impl(const std::vector<std::string>& files, const FrontMovieOptions& o)
       : frames(files, o.read), options(o) {}

@@ -79,6 +79,19 @@ FrontMovieResult resume_front_movie(const PhysicsConfig& physics, const FrontMov
                                     const std::filesystem::path& dir,
                                     const MovieCheckpoints& checkpoints);
 
+class RunLoop;
+
+// Whether write_run_movie can draw this movie: in one pass, as the run goes, which needs the
+// colour range known ahead (a kick's scaled speed has a fixed one; plain speed without --range
+// spans every frame, found by a pass ahead).
+bool movie_in_one_pass(const PhysicsConfig& physics, const FrontMovieOptions& o);
+// The movie write_front_movie(physics, o, dir) makes, frame for frame, drawn as `loop` (a new
+// run of `physics`, not yet started) runs to the last frame's time, t-max, which replays nothing.
+// A stop ends it as the loop's run does (the loop's checkpoint written), with a playable movie
+// of the frames so far.
+FrontMovieResult write_run_movie(RunLoop& loop, const PhysicsConfig& physics,
+                                 const FrontMovieOptions& o, const std::filesystem::path& dir);
+
 // A movie of stored snapshots, prepared so that bad input (a file that cannot be opened, flags
 // that do not fit the first frame) is refused before an output folder is made.
 class StoredMovie {

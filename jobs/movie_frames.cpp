@@ -70,6 +70,28 @@ bool LiveFrames::each(ProgressLine& progress, const char* pass,
       hook);
 }
 
+bool RunFrames::each(ProgressLine& progress, const char* pass,
+                     const std::function<void(std::size_t, const Snapshot&)>& visit) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Simulation& sim = loop_.simulation();
+  const auto events0 = sim.stats().events;
+  for (std::size_t k = 0; k < times_.size(); ++k) {
+    if (!loop_.run_to(times_[k])) return false;
+    // Before the first collision nothing is active, and the moving kicked particle is drawn.
+    if (active_only_ && sim.stats().collisions > 0)
+      sim.active_snapshot(snap_);
+    else
+      sim.snapshot(snap_);
+    visit(k, snap_);
+    char what[160];
+    std::snprintf(what, sizeof what, "%s: frame %zu of %zu, t = %.4g, %.3g events/s", pass, k + 1,
+                  times_.size(), times_[k],
+                  double(sim.stats().events - events0) / std::max(1e-9, seconds_since(t0)));
+    progress.update(double(k + 1) / times_.size(), what);
+  }
+  return true;  // a stop after the last frame is the loop's to notice, with its checkpoint
+}
+
 void StoredFrames::list() {
   for (std::size_t file = 0; file < paths_.size(); ++file) {
     const std::size_t n = open_snapshots(paths_[file], read_).frame_count();

@@ -1,6 +1,7 @@
 #include "jobs/run_job.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,8 +37,9 @@ constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary
                                        "movie.mp4",   "movie.parts",    "snapshots",
                                        "frames"};
 
-// The stages of a job after sampling, kept in checkpoints: a resume redoes the unfinished one.
-enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1 };
+// The stages of a job, kept in checkpoints: a resume redoes the unfinished ones. A movie drawn
+// during sampling is in place at kMovieMade; one made after it (a resumed run's) is not.
+enum Stage : std::uint32_t { kSampling = 0, kAfterSampling = 1, kMovieMade = 2 };
 
 std::string times_toml(const std::vector<double>& times) {
   std::string s = "[";
@@ -72,7 +74,8 @@ std::string summary_json(const RunOptions& o, const Simulation& sim, bool interr
 }
 
 // Wall times, apart from summary.json so that it is the same file on every run.
-std::string timing_json(const RunTiming& t, double after_s, const Simulation& sim) {
+// `movie_s`: the wall time the movie took while the run went on, beside the engine's.
+std::string timing_json(const RunTiming& t, double after_s, double movie_s, const Simulation& sim) {
   const double collisions = static_cast<double>(sim.stats().collisions);
   Json j;
   j["setup_seconds"] = t.setup;
@@ -80,7 +83,8 @@ std::string timing_json(const RunTiming& t, double after_s, const Simulation& si
   j["snapshot_seconds"] = t.snapshots;
   j["checkpoint_seconds"] = t.checkpoints;
   j["checkpoints"] = t.checkpoints_written;
-  j["pictures_and_movie_seconds"] = after_s;
+  j["pictures_and_movie_seconds"] = after_s + movie_s;
+  j["movie_during_run_seconds"] = movie_s;
   j["collisions_per_second"] = t.run > 0 ? collisions / t.run : 0.0;
   return json_text(j);
 }
@@ -151,8 +155,9 @@ bool write_pictures(const fs::path& dir, const RunOptions& o) {
 }
 
 // Fig. 1(b): the same gas, kicked the same way, with elastic collisions, at half the final time.
-// Nothing if stopped.
-std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
+// Nothing if stopped, or `abandoned` (the job ended by an error).
+std::optional<Snapshot> run_elastic_comparison(const RunOptions& o,
+                                               const std::atomic<bool>& abandoned) {
   PhysicsConfig c = o.plan.physics;
   c.restitution = 1.0;
   c.t_max = 0.5 * o.plan.physics.t_max;
@@ -160,7 +165,7 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o) {
   auto sim = make_simulation(c);
   while (sim->time() < c.t_max) {
     sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
-    if (stop_requested()) return std::nullopt;
+    if (stop_requested() || abandoned) return std::nullopt;
   }
   return sim->snapshot();
 }
@@ -288,42 +293,63 @@ RunResult run_job(const RunOptions& o, bool resume) {
   }
   loop->checkpoint_every = o.checkpoint_every;
 
+  // The elastic run needs nothing of this one: it takes the second core from the start, while
+  // this one samples, draws its movie and its pictures. It polls the same stop flag.
+  // An error in this one abandons it: `abandon` goes before the future, whose end waits for it.
+  std::atomic<bool> abandoned = false;
+  std::future<std::optional<Snapshot>> elastic;
+  struct Abandon {
+    std::atomic<bool>& flag;
+    ~Abandon() { flag = true; }
+  } abandon{abandoned};
+  if (o.compare_elastic)
+    elastic =
+        std::async(std::launch::async, run_elastic_comparison, std::cref(o), std::cref(abandoned));
   const double t_max = o.plan.physics.t_max;
   bool stopped = false;
+  double movie_s = 0;
   if (loop->stage() == kSampling) {
-    const auto progress_line = open_progress(o.progress);
-    ProgressLine& progress = *progress_line;
-    const auto t1 = std::chrono::steady_clock::now();
-    const auto events0 = loop->simulation().stats().events;
-    loop->on_sample = [&](const Sample& s) {
-      char what[160];
-      std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
-                    static_cast<long long>(s.active),
-                    static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
-      progress.update(s.t / t_max, what);
-    };
-    stopped = !loop->run();
-    progress.done();
+    // A new run draws its movie as it goes, at the frame times between its samples; a resumed
+    // one has passed frames already, and replays the run for its movie after sampling.
+    if (o.movie && !resume && movie_in_one_pass(o.plan.physics, movie)) {
+      if (!o.quiet) std::fprintf(stderr, "grainshock: the run, drawing the movie of the front\n");
+      const RunTiming before = loop->timing();
+      const auto t1 = std::chrono::steady_clock::now();
+      stopped = write_run_movie(*loop, o.plan.physics, movie, dir).stopped;
+      const RunTiming& after = loop->timing();
+      movie_s = seconds_since(t1) - (after.run - before.run) -
+                (after.snapshots - before.snapshots) - (after.checkpoints - before.checkpoints);
+      if (!stopped) stopped = !loop->run();  // the frames end at t-max: its sample, if any
+      if (!stopped) loop->set_stage(kMovieMade);
+    } else {
+      const auto progress_line = open_progress(o.progress);
+      ProgressLine& progress = *progress_line;
+      const auto t1 = std::chrono::steady_clock::now();
+      const auto events0 = loop->simulation().stats().events;
+      loop->on_sample = [&](const Sample& s) {
+        char what[160];
+        std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
+                      static_cast<long long>(s.active),
+                      static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
+        progress.update(s.t / t_max, what);
+      };
+      stopped = !loop->run();
+      progress.done();
+      if (!stopped) loop->set_stage(kAfterSampling);
+    }
     if (stopped) {  // a look at the data may want the moment too; a resume removes it
       const Snapshot s = loop->simulation().snapshot();
       write_snapshot(
           (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
           o.plan.snapshots);
     } else {
-      loop->set_stage(kAfterSampling);
       loop->write_checkpoint();
     }
   }
   const auto t2 = std::chrono::steady_clock::now();
-  // The elastic run needs nothing of this one: it takes the second core while the pictures and
-  // the movie (one core: replay, draw, encode) are made, which halves the Fig. 1 job's wall time
-  // after sampling. Both poll the same stop flag.
-  std::future<std::optional<Snapshot>> elastic;
-  if (!stopped && o.compare_elastic)
-    elastic = std::async(std::launch::async, run_elastic_comparison, std::cref(o));
   if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
   if (!stopped && o.png) stopped = !write_pictures(dir, o);
-  if (!stopped && o.movie) {
+  if (!stopped && o.movie && loop->stage() != kMovieMade) {
     // Runs are reproducible from (config, seed): the movie replays this very trajectory.
     if (!o.quiet) std::fprintf(stderr, "grainshock: movie of the front\n");
     stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
@@ -337,7 +363,8 @@ RunResult run_job(const RunOptions& o, bool resume) {
   }
   loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
-  write_file_atomic(dir / "timing.json", timing_json(loop->timing(), seconds_since(t2), sim));
+  write_file_atomic(dir / "timing.json",
+                    timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
   if (!o.quiet)

@@ -179,28 +179,27 @@ void RunLoop::remove_checkpoints() {
 }
 
 bool RunLoop::run(double until) {
-  double t0 = wall_now();
-  auto pause = [&] { timing_.run += wall_now() - t0; };
-  auto go_on = [&] { t0 = wall_now(); };
+  return timed([&] { return samples(until); });
+}
+
+bool RunLoop::run_to(double t) {
+  return timed([&] { return samples(t) && advance(t); });
+}
+
+template <class Step>
+bool RunLoop::timed(Step step) {
+  // The engine's and the samples' wall time: less the checkpoints and snapshots taken inside.
+  const double t0 = wall_now(), c0 = timing_.checkpoints, s0 = timing_.snapshots;
+  const bool go_on = step();
+  timing_.run += wall_now() - t0 - (timing_.checkpoints - c0) - (timing_.snapshots - s0);
+  return go_on;
+}
+
+bool RunLoop::samples(double until) {
   while (next_ < times_.size() && times_[next_] <= until) {
     const double t = times_[next_];
-    // Slices of simulated time, so that a stop request and a checkpoint falling due are seen
-    // within a fraction of a second. Where a slice ends does not change the history.
-    while (sim_->time() < t) {
-      sim_->run_until(std::min(t, sim_->time() + std::max(1.0, 0.01 * sim_->time())));
-      const bool stop = stop_requested();
-      if (stop || (checkpoint_every > 0 && wall_now() - last_checkpoint_ >= checkpoint_every)) {
-        pause();
-        write_checkpoint();
-        if (stop) {
-          finish_checkpoint();  // what the stop leaves behind is on disk before the exit
-          return false;
-        }
-        go_on();
-      }
-    }
+    if (!advance(t)) return false;
     record();
-    pause();
     if (next_snap_ < snaps_.size() &&
         std::abs(snaps_[next_snap_] - t) <= 1e-12 * std::max(1.0, t)) {
       const double s0 = wall_now();
@@ -211,9 +210,24 @@ bool RunLoop::run(double until) {
       timing_.snapshots += wall_now() - s0;
     }
     ++next_;
-    go_on();
   }
-  pause();
+  return true;
+}
+
+bool RunLoop::advance(double t) {
+  // Slices of simulated time, so that a stop request and a checkpoint falling due are seen
+  // within a fraction of a second. Where a slice ends does not change the history.
+  while (sim_->time() < t) {
+    sim_->run_until(std::min(t, sim_->time() + std::max(1.0, 0.01 * sim_->time())));
+    const bool stop = stop_requested();
+    if (stop || (checkpoint_every > 0 && wall_now() - last_checkpoint_ >= checkpoint_every)) {
+      write_checkpoint();
+      if (stop) {
+        finish_checkpoint();  // what the stop leaves behind is on disk before the exit
+        return false;
+      }
+    }
+  }
   return true;
 }
 

@@ -77,6 +77,9 @@ class RunLoop {
   // Processes the sample points up to simulation time `until`. Returns false if a stop was
   // requested (sim/stop.h); a checkpoint has then been written.
   bool run(double until = INFINITY);
+  // run(t), then the engine on to time t, between sample points (a movie's frame: where the
+  // engine pauses does not change the history). False if a stop was requested.
+  bool run_to(double t);
   bool sampling_done() const { return next_ == times_.size(); }
 
   // What the caller has done after sampling (0: nothing yet), kept in checkpoints for resume.
@@ -96,6 +99,10 @@ class RunLoop {
  private:
   RunLoop(const RunPlan& plan, const std::filesystem::path& dir, const std::string& spec,
           std::unique_ptr<Simulation> sim, std::uint64_t csv_bytes);
+  template <class Step>
+  bool timed(Step step);
+  bool samples(double until);
+  bool advance(double t);  // the engine to time t, in slices; false if stopped
   void record();
 
   RunPlan plan_;

@@ -76,6 +76,28 @@ TEST(CliResume, KilledAtRandomMomentsAndResumedGivesTheSameFiles) {
   }
 }
 
+// A new run with --movie draws its movie as it goes. Killed then, it resumes by replaying the run
+// for its movie after sampling; killed after sampling, its movie is in place and is kept; either
+// way it ends with the files, movie.mp4 included, of a run never interrupted. The kills land
+// anywhere in a run of a few seconds.
+TEST(CliResume, ARunWithItsMovieKilledAndResumedGivesTheSameFiles) {
+  const unsigned seed = static_cast<unsigned>(std::random_device{}());
+  std::mt19937 random(seed);
+  SCOPED_TRACE("random seed " + std::to_string(seed));
+  const std::string c =
+      "--dim 2 --medium box --particles 20000 --t-max 20000 --restitution 0.5 --snapshot-times "
+      "500 --png --width 320 --height 180 --movie --movie-inset --quiet";
+  const auto ref = scratch_dir("movie_ref");
+  const auto r = grainshock("run " + c + " --out " + ref.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(ref / "movie.mp4"));
+  for (int trial = 0; trial < 2; ++trial) {
+    const auto cut = scratch_dir("movie_cut" + std::to_string(trial));
+    test::kill_and_resume("run", c, cut, "checkpoint.bin", 2, 2500, random);
+    expect_same_folder(ref, cut);
+  }
+}
+
 // Ctrl-C writes a checkpoint; the stopped run says so, and resumes to the same files.
 TEST(CliResume, StoppedBySigintAndResumed) {
   const std::string c =
