@@ -40,8 +40,8 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
                "case, and the 3D elastic blast at 4e6 spheres: < 30 min on 2 cores (see "
                "--estimate)");
   sub.add_flag("--long", o.long_3d,
-               "Add the long 3D runs (r = 0.1, 0.5; 4e6 spheres, delta = 1e-6, to t = 1e6, 16 "
-               "realisations each): about 25 min on 2 cores; see --long --estimate");
+               "Add the long 3D runs (r = 0.1, 0.5; 4e6 and 8e6 spheres, delta = 1e-6, to t = 1e6, "
+               "16 realisations each): about 25 min on 2 cores; see --long --estimate");
   sub.add_flag("--limit", o.limit,
                "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
                "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
