@@ -202,6 +202,14 @@ Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b,
   return out;
 }
 
+const Phi1Reading* nearest_limit_reading(const std::vector<Phi1Reading>& readings, double level) {
+  const Phi1Reading* last = nullptr;
+  for (const auto& p : readings)
+    if ((std::isnan(level) ? std::isnan(p.level) : p.level == level) && std::isfinite(p.phi))
+      last = &p;
+  return last;
+}
+
 std::vector<Phi1Reading> phi1_readings(const std::vector<EnergyCurves>& curves,
                                        const Phi1Options& o) {
   std::vector<Phi1Reading> out;

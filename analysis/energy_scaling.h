@@ -75,6 +75,10 @@ Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b,
 std::vector<Phi1Reading> phi1_readings(const std::vector<EnergyCurves>& curves,
                                        const Phi1Options& o);
 
+// Of `readings` (phi1_readings' order), the one of the kind `level` (NaN: the collapse) from the
+// pair nearest r = 1 that gives an estimate; nullptr if no pair does.
+const Phi1Reading* nearest_limit_reading(const std::vector<Phi1Reading>& readings, double level);
+
 // The scaling estimate (d + 2) / 2 from cumulative dissipation during the elastic blast.
 inline double phi1_scaling_estimate(int d) { return (d + 2) / 2.0; }
 

@@ -394,9 +394,7 @@ Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& reading
   c.source = "paper: t_c1 ~ (1 - r^2)^-phi1 as r -> 1; scaling estimate (d + 2)/2 = " +
              fmt(phi1_scaling_estimate(d));
   c.figure = "fig6_crossover.png";
-  const Phi1Reading* last = nullptr;
-  for (const auto& p : readings)
-    if ((collapse ? std::isnan(p.level) : p.level == level) && std::isfinite(p.phi)) last = &p;
+  const Phi1Reading* last = nearest_limit_reading(readings, level);
   if (!last) {
     c.note = "no pair of r gives one";
     for (const auto& p : readings)

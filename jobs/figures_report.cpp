@@ -128,10 +128,7 @@ std::string phi1_limit_markdown(const Crossovers& crossovers) {
     std::vector<double> kinds{std::nan("")};
     for (double level : Phi1Options{}.levels) kinds.push_back(level);
     for (double level : kinds) {
-      const Phi1Reading* last = nullptr;
-      for (const auto& p : set.energy)
-        if ((std::isnan(level) ? std::isnan(p.level) : p.level == level) && std::isfinite(p.phi))
-          last = &p;
+      const Phi1Reading* last = nearest_limit_reading(set.energy, level);
       const std::string name = std::isnan(level) ? "E_t/E_0 collapse (declared)"
                                                  : "time to E_0 x " + figure_number(level, 2);
       if (last)
