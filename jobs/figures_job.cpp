@@ -310,9 +310,11 @@ bool estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   return true;
 }
 
-// What a figures job writes that a new job in the same folder (--force) must not find.
+// What a figures job writes that a new job in the same folder (--force) must not find; an
+// estimate replaces only its scratch, leaving a job's results beside it.
 constexpr const char* kReplaced[] = {"ensembles", "estimate_sample", "figures.toml", "report.md",
                                      "summary.json"};
+constexpr const char* kEstimateReplaced[] = {"estimate_sample"};
 
 }  // namespace
 
@@ -336,7 +338,8 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     if (!o.force && is_unfinished_figures_folder(o.out))
       throw UserError("--out " + o.out + ": holds an unfinished figures job; continue it with: " +
                       "grainshock resume " + o.out + ", or use --force to start again");
-    out.dir = prepare_output_dir(o.out, o.force, kReplaced);
+    out.dir = o.estimate ? prepare_output_dir(o.out, o.force, kEstimateReplaced)
+                         : prepare_output_dir(o.out, o.force, kReplaced);
     lock_output_dir(out.dir);  // a resume of it meanwhile would run the same realisations
   }
   const fs::path& dir = out.dir;

@@ -30,7 +30,7 @@ struct SnapshotInfo {
   std::optional<std::uint64_t> seed;
   // A snapshot of the unbounded medium: `box` is only the region the engine addresses, almost all
   // of it never made, so there is no box to frame. Set by the engine, written and read as the XYZ
-  // key Medium=unbounded.
+  // key Medium=unbounded and the GSD chunk log/Unbounded.
   bool unbounded = false;
 
   // A periodic cube of this side in the first `dim` axes (set `dim` first).

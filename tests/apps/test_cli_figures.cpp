@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <set>
 
@@ -189,9 +190,16 @@ TEST(CliFigures, EstimateTimesEveryStageOfTheJob) {
   // readings, and Fig. 1 with the plots; its CPU total is their sum, and it leaves no figures.
   // --limit's cases are sampled to a shorter time and their cost extrapolated to t_max.
   const auto dir = scratch_dir("estimate");
+  // Into the folder of a job's results with --force: the estimate replaces only its own files.
+  fs::create_directories(dir / "ensembles" / "d2_r0.1");
+  { std::ofstream(dir / "summary.json") << "results\n"; }
   const auto r = grainshock(
-      "figures --tiny --limit --estimate --sample 1 --threads 2 --quiet --out " + dir.string());
+      "figures --tiny --limit --estimate --sample 1 --threads 2 --quiet "
+      "--force --out " +
+      dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "summary.json"), "results\n");
+  EXPECT_TRUE(fs::is_directory(dir / "ensembles" / "d2_r0.1"));
   const Json j = Json::parse(read_file(dir / "estimate.json"));
   double sum =
       j.at("readings_cpu_seconds").get<double>() + j.at("figures_cpu_seconds").get<double>();
