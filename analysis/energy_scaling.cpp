@@ -30,8 +30,8 @@ double log_at(std::span<const double> t, std::span<const double> y, double u) {
 
 void check_pair(const EnergyCurves& a, const EnergyCurves& b) {
   if (!(a.control > 0) || !(b.control > 0) || a.control == b.control)
-    throw UserError("phi1: two different positive values of 1 - r^2 needed (" + a.label +
-                    ", " + b.label + ")");
+    throw UserError("phi1: two different positive values of 1 - r^2 needed (" + a.label + ", " +
+                    b.label + ")");
 }
 
 double phi_between(double ca, double cb, double ta, double tb) {
@@ -47,6 +47,17 @@ void interval_of(std::vector<double> draws, Phi1Reading& out) {
   out.ci_hi = sorted_quantile(draws, 0.975);
 }
 
+// The mean of c's realisations drawn with replacement.
+std::vector<double> resampled_mean(const EnergyCurves& c, Rng& rng) {
+  std::vector<double> m(c.t.size(), 0.0);
+  const std::size_t n = c.realisations.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto& y = c.realisations[std::size_t(rng.below(n))];
+    for (std::size_t i = 0; i < m.size(); ++i) m[i] += y[i] / double(n);
+  }
+  return m;
+}
+
 // Calls f(mean_a, mean_b) for each of o.resamples draws, each curve's realisations resampled
 // with replacement (gs::Rng, Stream::Bootstrap, keyed by the seed and `key`).
 template <class F>
@@ -54,20 +65,16 @@ void for_each_draw(const EnergyCurves& a, const EnergyCurves& b, const Phi1Optio
                    std::uint64_t key, F f) {
   if (a.realisations.size() < 2 || b.realisations.size() < 2) return;
   Rng rng(o.seed, key, Stream::Bootstrap);
-  auto draw = [&](const EnergyCurves& c) {
-    std::vector<double> m(c.t.size(), 0.0);
-    const std::size_t n = c.realisations.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& y = c.realisations[std::size_t(rng.below(n))];
-      for (std::size_t i = 0; i < m.size(); ++i) m[i] += y[i] / double(n);
-    }
-    return m;
-  };
   for (int s = 0; s < o.resamples; ++s) {
-    const auto ma = draw(a);
-    const auto mb = draw(b);
+    const auto ma = resampled_mean(a, rng);
+    const auto mb = resampled_mean(b, rng);
     f(ma, mb);
   }
+}
+
+// The key of a level's draws: its own stream for each fraction of E_0.
+std::uint64_t level_key(double level) {
+  return 3301 + std::uint64_t(std::round(-100 * std::log(level)));
 }
 
 double best_collapse(const EnergyCurves& a, std::span<const double> ma, const EnergyCurves& b,
@@ -97,7 +104,9 @@ double best_collapse(const EnergyCurves& a, std::span<const double> ma, const En
   return 0.5 * (lo + hi);
 }
 
-std::string fraction_text(double level) { return format_number(level); }
+std::string fraction_text(double level) {
+  return format_number(level);
+}
 
 }  // namespace
 
@@ -148,6 +157,18 @@ double collapse_misfit(const EnergyCurves& a, std::span<const double> ma, const 
   return n >= 4 ? sum / double(n) : kInf;
 }
 
+FractionTime time_to_fraction(const EnergyCurves& c, double level, const Phi1Options& o) {
+  FractionTime out;
+  if (c.realisations.empty()) return out;
+  out.t = time_to_level(c.t, c.mean(), level * c.e0);
+  if (c.realisations.size() < 2) return out;
+  // Streams apart from the pairs' (keys 3300 and up): 4300 and up.
+  Rng rng(o.seed, 1000 + level_key(level), Stream::Bootstrap);
+  for (int s = 0; s < o.resamples; ++s)
+    out.draws.push_back(time_to_level(c.t, resampled_mean(c, rng), level * c.e0));
+  return out;
+}
+
 Phi1Reading phi1_from_level(const EnergyCurves& a, const EnergyCurves& b, double level,
                             const Phi1Options& o) {
   check_pair(a, b);
@@ -165,20 +186,17 @@ Phi1Reading phi1_from_level(const EnergyCurves& a, const EnergyCurves& b, double
   }
   out.phi = phi_between(a.control, b.control, ta, tb);
   std::vector<double> draws;
-  for_each_draw(a, b, o, 3301 + std::uint64_t(std::round(-100 * std::log(level))),
-                [&](const auto& da, const auto& db) {
-                  const double x = time_to_level(a.t, da, level * a.e0);
-                  const double y = time_to_level(b.t, db, level * b.e0);
-                  draws.push_back(std::isfinite(x) && std::isfinite(y)
-                                      ? phi_between(a.control, b.control, x, y)
-                                      : kNan);
-                });
+  for_each_draw(a, b, o, level_key(level), [&](const auto& da, const auto& db) {
+    const double x = time_to_level(a.t, da, level * a.e0);
+    const double y = time_to_level(b.t, db, level * b.e0);
+    draws.push_back(std::isfinite(x) && std::isfinite(y) ? phi_between(a.control, b.control, x, y)
+                                                         : kNan);
+  });
   interval_of(std::move(draws), out);
   return out;
 }
 
-Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b,
-                               const Phi1Options& o) {
+Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b, const Phi1Options& o) {
   check_pair(a, b);
   if (!(o.collapse_lo > 0 && o.collapse_lo < o.collapse_hi))
     throw UserError("phi1: the collapse's energy range must satisfy 0 < lo < hi");
@@ -215,7 +233,8 @@ std::vector<Phi1Reading> phi1_readings(const std::vector<EnergyCurves>& curves,
   std::vector<Phi1Reading> out;
   for (std::size_t k = 1; k < curves.size(); ++k) {
     out.push_back(phi1_from_collapse(curves[k - 1], curves[k], o));
-    for (double level : o.levels) out.push_back(phi1_from_level(curves[k - 1], curves[k], level, o));
+    for (double level : o.levels)
+      out.push_back(phi1_from_level(curves[k - 1], curves[k], level, o));
   }
   return out;
 }

@@ -41,9 +41,8 @@ double time_to_level(std::span<const double> t, std::span<const double> y, doubl
 // Mean squared difference of ln y between the two curves where they overlap against
 // x = ln t + phi ln control, each curve's samples with y / E_0 in [lo, hi] interpolated on the
 // other (both ways); infinity with fewer than 4 matched samples.
-double collapse_misfit(const EnergyCurves& a, std::span<const double> mean_a,
-                       const EnergyCurves& b, std::span<const double> mean_b, double phi,
-                       double lo, double hi);
+double collapse_misfit(const EnergyCurves& a, std::span<const double> mean_a, const EnergyCurves& b,
+                       std::span<const double> mean_b, double phi, double lo, double hi);
 
 struct Phi1Options {
   std::vector<double> levels = {0.5, 0.1, 0.01};  // fractions of E_0 for the level reading
@@ -65,10 +64,18 @@ struct Phi1Reading {
   std::string note;
 };
 
+// The time <E_t> of one r first falls to level x E_0 (NaN if it does not within the run), and
+// the same in each of o.resamples draws of its realisations with replacement: the crossover
+// times whose ratios the level readings are (fig10 of `figures`).
+struct FractionTime {
+  double t = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> draws;
+};
+FractionTime time_to_fraction(const EnergyCurves& c, double level, const Phi1Options& o);
+
 Phi1Reading phi1_from_level(const EnergyCurves& a, const EnergyCurves& b, double level,
                             const Phi1Options& o);
-Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b,
-                               const Phi1Options& o);
+Phi1Reading phi1_from_collapse(const EnergyCurves& a, const EnergyCurves& b, const Phi1Options& o);
 
 // For each neighbouring pair of `curves` (in the order given, r ascending): the collapse, then
 // one reading per level.
@@ -80,6 +87,8 @@ std::vector<Phi1Reading> phi1_readings(const std::vector<EnergyCurves>& curves,
 const Phi1Reading* nearest_limit_reading(const std::vector<Phi1Reading>& readings, double level);
 
 // The scaling estimate (d + 2) / 2 from cumulative dissipation during the elastic blast.
-inline double phi1_scaling_estimate(int d) { return (d + 2) / 2.0; }
+inline double phi1_scaling_estimate(int d) {
+  return (d + 2) / 2.0;
+}
 
 }  // namespace gs

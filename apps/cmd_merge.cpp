@@ -86,7 +86,7 @@ void run(const MergeOptions& o) {
   for (const auto& [index, p] : parts) sums.add(read_realisation(p, index), p.string());
   const auto dir = prepare_output_dir(o.out, o.force);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const EnsembleFits fits = jobs::write_ensemble_folder(dir, sums, fit, wall, 1);
+  const EnsembleFits fits = jobs::write_ensemble_folder(dir, sums, fit, wall, 1, 0);
   std::fputs(exponent_table(sums, fits).c_str(), stdout);
   if (!o.quiet)
     std::fprintf(stderr, "grainshock: merged %llu realisations from %zu folders into %s\n",

@@ -39,7 +39,11 @@ double Progress::eta(double ref_wall, double ref_fraction, double wall, double f
   double end = wall / fraction;  // steady rate since the start
   if (ref_fraction > 0 && ref_wall > 0 && ref_wall < wall && fraction > ref_fraction) {
     const double beta = std::log(fraction / ref_fraction) / std::log(wall / ref_wall);
-    end = wall * std::pow(1 / fraction, 1 / beta);
+    // A single run slows to beta ~ 1/g >= 0.5 (its collisions grow as t^g, g <= 2). Slower
+    // means the fraction counts unequal pieces (a figures job's quick realisations, then its
+    // long ones), and following it would promise thousands of hours: the steady rate since
+    // the start is all there is then, as when the work has stalled.
+    if (beta >= 0.25) end = wall * std::pow(1 / fraction, 1 / beta);
   }
   return std::isfinite(end) && end - wall < 1e8 ? end - wall : -1;
 }

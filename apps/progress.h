@@ -8,7 +8,8 @@
 // realisations) is fitted as f ~ wall^beta through its two ends and followed to f = 1. For a
 // steady rate (beta = 1) that is the usual linear estimate; a kick whose front gathers more and
 // more particles advances simulated time ever more slowly (beta < 1), which a linear estimate
-// from t / t_max misses by a factor of several.
+// from t / t_max misses by a factor of several. Below beta = 1/4 the fraction is not one run's
+// (unequal realisations): the linear estimate is used then.
 #include <chrono>
 #include <condition_variable>
 #include <deque>

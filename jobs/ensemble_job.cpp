@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "analysis/ensemble_ranks.h"
@@ -165,16 +166,18 @@ EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const Ensem
   j["threads"] = t.threads;
   j["ranks"] = t.ranks;
   j["realisations_run"] = t.realisations;
+  // null when nothing was run (a merge, a resume that found every realisation finished).
   j["wall_seconds_per_realisation"] =
-      t.wall_seconds / double(std::max<std::uint64_t>(1, t.realisations));
+      t.realisations > 0 ? t.wall_seconds / double(t.realisations) : std::nan("");
   write_file_atomic(dir / "timing.json", json_text(j));
   return fits;
 }
 
 EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
-                                   const FitOptions& fit, double wall_seconds, int threads) {
+                                   const FitOptions& fit, double wall_seconds, int threads,
+                                   std::uint64_t realisations_run) {
   return write_ensemble_folder(dir, sums, EnsembleJob{held_spec(sums), fit},
-                               EnsembleTiming{wall_seconds, threads, 1, sums.count()});
+                               EnsembleTiming{wall_seconds, threads, 1, realisations_run});
 }
 
 }  // namespace gs::jobs

@@ -58,8 +58,10 @@ struct EnsembleTiming {
 // Fits and writes the ensemble files with ensemble.toml = job_toml(job), plus timing.json.
 EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
                                    const EnsembleJob& job, const EnsembleTiming& timing);
-// The same for an ensemble made of what the sums hold (merge, figures).
+// The same for an ensemble made of what the sums hold (merge, figures), of which
+// `realisations_run` were run in this call (merge runs none).
 EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,
-                                   const FitOptions& fit, double wall_seconds, int threads);
+                                   const FitOptions& fit, double wall_seconds, int threads,
+                                   std::uint64_t realisations_run);
 
 }  // namespace gs::jobs

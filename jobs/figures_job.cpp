@@ -132,12 +132,13 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
       return {dir, seconds_since(t0), {}, true};
     }
     const Cost run_cost = run_meter.read();
+    const std::uint64_t run_now = r.sums.count() - r.resumed;
     resumed += r.resumed;
     const Meter fit_meter;
     done_before += c.spec.realisations;
     const auto edir = dir / "ensembles" / c.name;
     CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
-    cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads);
+    cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads, run_now);
     if (!c.delta_scan) {
       auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
       if (c.superseded_for_alpha)

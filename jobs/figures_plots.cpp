@@ -394,10 +394,10 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
     }
     const std::string ks = std::to_string(k), ds = std::to_string(d);
     const std::string title = "d = " + ds + (set.rule.empty() ? "" : ", " + set.rule);
+    const std::string symbol = set.symbol != 0 ? std::to_string(set.symbol) : set.open ? "6" : "7";
     plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
-            ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " +
-            (set.open ? "6" : "7") + " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") +
-            "' title '" + title + "'";
+            ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " + symbol +
+            " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") + "' title '" + title + "'";
     const auto& f = set.fit;
     if (std::isfinite(f.fit.phi)) {
       char buf[200];
@@ -493,11 +493,24 @@ std::string slope_figure_of(const FigureCase& c) {
   return "fig8_local_slopes_" + c.name + ".png";
 }
 
+namespace {
+
+CrossoverSet crossover_set(int d, std::string rule, bool open = false, int symbol = 0) {
+  CrossoverSet s;
+  s.d = d;
+  s.rule = std::move(rule);
+  s.open = open;
+  s.symbol = symbol;
+  return s;
+}
+
+}  // namespace
+
 Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   Crossovers x;
   for (int d : {2, 3}) {
-    CrossoverSet energy{d, "intersection rule (E_t)", {}, {}, false, {}, {}};
-    CrossoverSet theory_b{d, "intersection rule, b = theory", {}, {}, true, {}, {}};
+    CrossoverSet energy = crossover_set(d, "intersection rule (E_t)");
+    CrossoverSet theory_b = crossover_set(d, "intersection rule, b = theory", true);
     std::vector<EnergyCurves> curves;
     for (const CaseResult* c : phi1_cases(results, d)) {
       const double r = c->plan->spec.physics.restitution;
@@ -520,8 +533,21 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
     theory_b.fit = fit_crossover_points(theory_b.points);
     x.tc1.push_back(std::move(energy));
     x.tc1_theory_b.push_back(std::move(theory_b));
+    // Open circle, square, triangle for E_0/2, /10, /100.
+    const int symbols[] = {6, 4, 8};
+    for (std::size_t k = 0; k < po.levels.size(); ++k) {
+      const double f = po.levels[k];
+      CrossoverSet at =
+          crossover_set(d, "time to E_0 x " + figure_number(f, 3), true, symbols[k % 3]);
+      for (const EnergyCurves& ec : curves) {
+        FractionTime ft = time_to_fraction(ec, f, po);
+        at.points.push_back(
+            {ec.control, ec.label, {ft.t, std::isfinite(ft.t), ""}, std::move(ft.draws)});
+      }
+      x.fractions.push_back(std::move(at));
+    }
   }
-  CrossoverSet scan{2, "", {}, {}, false, {}, {}};
+  CrossoverSet scan = crossover_set(2, "");
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;
@@ -560,6 +586,12 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
        "Crossover time t_{c1} against 1 - r^2 (paper: φ_1 = 2.25 in 2D, 3.0 in 3D)", "1 - r^2",
        "t_{c1} (simulation units)", "φ_1"},
       tc1));
+  check(fig_crossover_points(out,
+                             {"fig10_energy_fraction_times",
+                              "Time for <E_t> to reach E_0/2, E_0/10, E_0/100 against 1 - r^2 "
+                              "(level readings of φ_1)",
+                              "1 - r^2", "t (simulation units)", "φ_1"},
+                             crossovers.fractions));
   check(fig_crossover_points(
       out,
       {"fig7_tc2_delta",

@@ -29,6 +29,7 @@ struct CrossoverSet {
   std::vector<CrossoverPoint> points;
   CrossoverExponentFit fit;
   bool open = false;  // drawn with open symbols: a reading beside the reported one
+  int symbol = 0;     // gnuplot point type; 0: a circle (filled, or open as above)
   std::vector<LocalCrossoverExponent> local;  // between neighbouring points (tc1 only)
   // phi1 from the energy curves between neighbouring r, no plateau needed (tc1 only,
   // analysis/energy_scaling.h): per pair the collapse, then each fixed fraction of E_0.
@@ -39,8 +40,11 @@ struct CrossoverSet {
 // `figures --limit` in place of the paper cases of their r) by the intersection rule and,
 // beside it, with E_t's exponent fixed at the theory's; t_c2 against the cutoff delta (phi2,
 // from the 2D r = 0.1 scan).
+// `fractions`: per dimension and fraction f of E_0, the time <E_t> first falls to f E_0 against
+// 1 - r^2, whose ratios between neighbouring r are the level readings of phi1 (fig10; no fit
+// across all r, which would mix regimes).
 struct Crossovers {
-  std::vector<CrossoverSet> tc1, tc1_theory_b, tc2;
+  std::vector<CrossoverSet> tc1, tc1_theory_b, tc2, fractions;
 };
 Crossovers crossovers_of(const std::vector<CaseResult>& results);
 

@@ -1,7 +1,5 @@
 #include "sim/config.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +9,7 @@
 
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/memory_budget.h"
 #include "sim/unbounded_medium.h"
 
 namespace gs {
@@ -90,15 +89,14 @@ void validate(const PhysicsConfig& c) {
   // Particle indices are 32-bit in the engine.
   if (c.particles >= INT32_MAX)
     bad("--particles " + std::to_string(c.particles) + ": at most " +
-         std::to_string(INT32_MAX - 1) + " (and this many would need about " +
-         rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
+        std::to_string(INT32_MAX - 1) + " (and this many would need about " +
+        rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
   // Run files are TOML, whose integers are signed 64-bit: a larger seed could not be read back.
   if (c.seed > static_cast<std::uint64_t>(INT64_MAX))
-    bad("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
-         "]");
+    bad("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) + "]");
   if (c.realisation > static_cast<std::uint64_t>(INT64_MAX))
     bad("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
-         std::to_string(INT64_MAX) + "]");
+        std::to_string(INT64_MAX) + "]");
   if (c.unbounded()) {
     if (c.dim == 1) bad("--medium unbounded: exists only in 2D and 3D (--dim 2 or 3)");
     if (c.initial != Initial::Kick) bad("--medium unbounded: only for --initial kick");
@@ -133,7 +131,6 @@ void validate(const PhysicsConfig& c) {
     // The box's limits below do not apply; the medium's calibration has its own (it names
     // --density).
     medium_candidate_density(c.dim, c.density);
-    check_memory(c, 0);
     return;
   }
   // Below three diameters a particle could meet its own periodic image within the cell stencil.
@@ -165,29 +162,45 @@ Medium default_medium(const PhysicsConfig& c) {
   return kick ? Medium::Unbounded : Medium::Box;
 }
 
+namespace {
+
+// The engine's records (sim/engine.h) and queue entry, and a snapshot with its extended-XYZ text.
+double engine_bytes(int dim) {
+  return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8;
+}
+constexpr double kSnapshotBytes = 65 + 140;
+
+// The unbounded medium's cells per made particle: a made cell's list head (4 B) and its place in
+// the list of made cells (4 B), about 2/n cells per particle with the shell beyond the front.
+double unbounded_cell_bytes(const PhysicsConfig& c) {
+  return 2.0 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 8;
+}
+
+}  // namespace
+
+double unbounded_bytes_per_particle(const PhysicsConfig& c) {
+  return engine_bytes(c.dim) + unbounded_cell_bytes(c) + kSnapshotBytes;
+}
+
 double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
-  const double d = c.dim;
-  // The engine's records (sim/engine.h) and queue entry, the initial state with the copies that
-  // sorting it makes, and a snapshot with its extended-XYZ text.
-  const double engine = 64 + 32 + 16 + 8 + 4 + 4 * d + 8 + 4 + 8;
-  const double initial = 32 * d + 48;
-  const double snapshot = 65 + 140;
+  const double engine = engine_bytes(c.dim), snapshot = kSnapshotBytes;
   if (c.unbounded()) {
-    // At most N particles made, with no initial state; a made cell's list head (4 B) and its
-    // place in the list of made cells (4 B), about 2/n cells per particle with the shell beyond
-    // the front, and the medium's memo of candidates (cleared at kMemoCandidates, sim/engine.h).
-    const double cells = 2.0 / (c.density * std::pow(kUnboundedCellSide, d)) * 8;
-    return static_cast<double>(c.particles) * (engine + cells + snapshot * snapshot_copies) +
+    // At most N particles made, with no initial state, and the medium's memo of candidates
+    // (cleared at kMemoCandidates, sim/engine.h).
+    return static_cast<double>(c.particles) *
+               (engine + unbounded_cell_bytes(c) + snapshot * snapshot_copies) +
            (1 << 20) * 48.0;
   }
+  // The initial state with the copies that sorting it makes.
+  const double initial = 32.0 * c.dim + 48;
   const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
   return static_cast<double>(c.particles) * (engine + initial + snapshot * snapshot_copies) +
          8 * cells;
 }
 
 void check_memory(const PhysicsConfig& c, int snapshot_copies) {
-  const double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (c.unbounded()) return;
+  const double have = physical_memory_bytes();
   const double need = estimated_bytes(c, snapshot_copies);
   if (have > 0 && need > have) {
     char text[160];

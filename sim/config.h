@@ -55,9 +55,15 @@ inline constexpr double kCellsPerParticle = 16;
 inline constexpr double kMinCellLimit = 16777216;  // 2^24 cells, 64 MB of list heads
 
 // Bytes a run of `c` needs at its peak (initial state, engine, and `snapshot_copies` snapshots
-// with their text), an estimate to refuse a run before anything is allocated.
+// with their text), an estimate to refuse a run before anything is allocated. In the unbounded
+// medium: if it made all the --particles it may.
 double estimated_bytes(const PhysicsConfig& c, int snapshot_copies = 1);
-// Throws UserError if estimated_bytes() exceeds this machine's memory, saying how much each is.
+// What each particle the unbounded medium makes adds to estimated_bytes() with one snapshot: the
+// bytes its engine takes from the process's MemoryBudget (sim/memory_budget.h) as it makes them.
+double unbounded_bytes_per_particle(const PhysicsConfig& c);
+// Throws UserError if estimated_bytes() of a box run exceeds this machine's memory, saying how
+// much each is. An unbounded run is not refused here: how far its front gets by --t-max is what
+// it measures, and its engine stops it when the memory it makes would not fit.
 void check_memory(const PhysicsConfig& c, int snapshot_copies = 1);
 
 // The unbounded medium lives in a periodic grid of cells of side kUnboundedCellSide (just over a

@@ -143,6 +143,7 @@ void Engine<D>::make_cell(std::int32_t cell) {
     throw UserError("--particles " + std::to_string(config_.particles) +
                     ": the unbounded medium has made as many particles as it may by t = " +
                     format_double(now_) + "; raise --particles or lower --t-max");
+  take_memory(fresh_.size());
   if (medium_->cached_candidates() > kMemoCandidates) medium_->clear();
   head_[cell] = kEmptyCell;
   made_.push_back(cell);
@@ -162,6 +163,20 @@ void Engine<D>::make_cell(std::int32_t cell) {
     set_cell(i, c);
     cell_insert(i, cell);
   }
+}
+
+template <int D>
+void Engine<D>::take_memory(std::size_t n) {
+  const auto each = static_cast<std::int64_t>(std::ceil(unbounded_bytes_per_particle(config_)));
+  if (memory_.take(static_cast<std::int64_t>(n) * each)) return;
+  const MemoryBudget& all = MemoryBudget::process();
+  throw UserError("--t-max " + format_double(config_.t_max) + ": the unbounded medium's " +
+                  std::to_string(kin_.size() + n) + " particles (about " + std::to_string(each) +
+                  " B each) would not fit in this machine's " +
+                  format_double(std::round(static_cast<double>(all.capacity()) / 1e8) / 10) +
+                  " GB of memory" +
+                  (all.taken() > memory_.bytes() ? " beside this process's other runs" : "") +
+                  " at t = " + format_double(now_) + "; use a smaller --t-max");
 }
 
 namespace {
@@ -232,6 +247,7 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   in.vector(kin_);
   in.expect(kin_.size() <= cap);
   const std::size_t n = c.unbounded() ? kin_.size() : cap;
+  if (c.unbounded()) take_memory(n);
   in.vector(tag_);
   in.vector(image_);
   if (c.unbounded()) {

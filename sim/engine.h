@@ -28,6 +28,7 @@
 #include "sim/event_queue.h"
 #include "sim/huge_pages.h"
 #include "sim/initial.h"
+#include "sim/memory_budget.h"
 #include "sim/snapshot.h"
 #include "sim/state_stream.h"
 #include "sim/unbounded_medium.h"
@@ -171,6 +172,8 @@ class Engine final : public Simulation {
   void cell_remove(std::int32_t i, std::int32_t cell);
   void reserve_particles(std::size_t n);
   [[gnu::cold]] void make_cell(std::int32_t cell);  // the unbounded medium: appends its particles
+  // Takes the memory of `n` more made particles from the process's budget, or ends the run.
+  void take_memory(std::size_t n);
   void kick_nearest_centre();
 
   PhysicsConfig config_;
@@ -241,6 +244,7 @@ class Engine final : public Simulation {
   std::vector<std::int32_t> made_;
   VecArray<D> fresh_;
   std::size_t capacity_ = 0;
+  BudgetShare memory_;  // what the made particles take of the process's memory
 
   // Sticky clusters (1D, r = 0): particles are indexed along the line, a cluster is a cyclic
   // index range, and its two ends know each other.

@@ -54,14 +54,17 @@ class Movie:
 
     add() takes a Snapshot (drawn with the render options given here, at the movie's size) or
     an Image of the movie's size. The file appears complete when the block ends, and not at all
-    if it ends with an exception.
+    if it ends with an exception. fps, codec, crf and preset not given are those of `grainshock
+    movie` (30 frames/s, H.264 at CRF 18, x264's ultrafast preset).
     """
 
-    def __init__(self, path, *, fps=30.0, width=1920, height=1080, codec="h264", crf=18,
-                 preset="ultrafast", **render_options):
+    def __init__(self, path, *, width=1920, height=1080, fps=None, codec=None, crf=None,
+                 preset=None, **render_options):
         self.path = str(path)
-        self._writer = _c._MovieWriter(self.path, width, height, fps=fps, codec=codec, crf=crf,
-                                       preset=preset)
+        # Only what was given goes to the encoder, whose defaults are the C++ MovieOptions' own.
+        given = {k: v for k, v in dict(fps=fps, codec=codec, crf=crf, preset=preset).items()
+                 if v is not None}
+        self._writer = _c._MovieWriter(self.path, width, height, **given)
         self._size = (width, height)
         self._render = render_options
         self._closed = False

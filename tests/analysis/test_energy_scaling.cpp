@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/energy_scaling.h"
@@ -47,6 +48,32 @@ TEST(EnergyScaling, TimeToLevelIsExactOnAPowerLaw) {
   EXPECT_TRUE(std::isnan(time_to_level(t, y, 1e-5)));  // never reached
   EXPECT_TRUE(std::isnan(time_to_level(t, y, 2)));     // starts below
   EXPECT_THROW(time_to_level(t, y, 0), UserError);
+}
+
+// One r's time to a fraction of E_0 (fig10's points): on the family's form t_f = c^-phi x_f
+// with g(x_f) = f, x_f = (1/f - 1)^(1/gamma). Tolerance: the mean amplitude of 20
+// realisations is off by ~0.5% (2% / sqrt 20), which moves t_f by ~0.5% / gamma = 0.7%; 3% is
+// four of those, and the 95% interval must hold t_f and not a time 20% off.
+TEST(EnergyScaling, TimeToAFractionOfE0WithItsInterval) {
+  const double phi = 2.25, gamma = 0.7;
+  const auto c = family_member(0.9, phi, gamma, 20, 3);
+  Phi1Options o;
+  for (double f : {0.5, 0.1, 0.01}) {
+    const double exact = std::pow(c.control, -phi) * std::pow(1 / f - 1, 1 / gamma);
+    const FractionTime ft = time_to_fraction(c, f, o);
+    EXPECT_NEAR(ft.t / exact, 1.0, 0.03) << "f = " << f;
+    ASSERT_EQ(ft.draws.size(), std::size_t(o.resamples));
+    std::vector<double> d = ft.draws;
+    std::sort(d.begin(), d.end());
+    const double lo = d[std::size_t(0.025 * d.size())], hi = d[std::size_t(0.975 * d.size())];
+    EXPECT_LE(lo, exact * 1.02) << "f = " << f;
+    EXPECT_GE(hi, exact / 1.02) << "f = " << f;
+    EXPECT_FALSE(lo <= 1.2 * exact && 1.2 * exact <= hi) << "a wrong time passes, f = " << f;
+  }
+  EXPECT_TRUE(std::isnan(time_to_fraction(c, 1e-9, o).t));  // not within the run
+  EnergyCurves one = c;
+  one.realisations.resize(1);
+  EXPECT_TRUE(time_to_fraction(one, 0.1, o).draws.empty());  // nothing to resample
 }
 
 TEST(EnergyScaling, LevelReadingRecoversPhiAtEveryLevelAndRejectsAWrongOne) {

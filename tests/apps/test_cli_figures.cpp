@@ -54,7 +54,7 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* base :
        {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d", "fig5_collapse_3d",
         "fig6_crossover", "fig7_tc2_delta", "fig8_local_slopes_d2_r0.1",
-        "fig8_local_slopes_d3_r1_large", "fig9_packing"}) {
+        "fig8_local_slopes_d3_r1_large", "fig9_packing", "fig10_energy_fraction_times"}) {
     const std::string b(base);
     EXPECT_TRUE(is_png(dir / (b + ".png"))) << b;
     EXPECT_NE(read_file(dir / (b + ".svg")).find("<svg"), std::string::npos) << b;

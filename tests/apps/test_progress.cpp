@@ -28,6 +28,11 @@ TEST(Progress, NoEstimateWithoutProgress) {
   EXPECT_LT(Progress::eta(5, 0.5, 10, 1), 0);
   // Stalled over the last half: the steady rate since the start is all there is.
   EXPECT_DOUBLE_EQ(Progress::eta(5, 0.5, 10, 0.5), 10);
+  // A figures job past its quick cases, 68% of realisations in 2 min and 70% in 4: beta 0.04
+  // would say 1e4 hours are left; the steady rate since the start says 103 s.
+  EXPECT_NEAR(Progress::eta(120, 0.68, 240, 0.70), 240 / 0.7 - 240, 1e-9);
+  // beta 0.26 is still followed: 240 (1/0.6)^(1/0.263) - 240 = 1.6e3 s.
+  EXPECT_NEAR(Progress::eta(120, 0.5, 240, 0.6), 240 * std::pow(1 / 0.6, 1 / 0.26303) - 240, 1);
 }
 
 }  // namespace

@@ -98,8 +98,16 @@ TEST_F(FiguresResume, AStoppedJobResumedWritesWhatAJobNeverStoppedWrites) {
   EXPECT_TRUE(results_of(stopped) == results_of(never)) << "the resumed job's results differ";
   const Json j = Json::parse(text_of(stopped / "summary.json"));
   EXPECT_GE(j.at("resumed_realisations").get<int>(), 4);
-  for (const auto& e : fs::directory_iterator(stopped / "ensembles"))
+  // Each ensemble's timing counts the realisations this call ran, not those read back.
+  std::int64_t run_after = 0, run_never = 0;
+  for (const auto& e : fs::directory_iterator(stopped / "ensembles")) {
     EXPECT_FALSE(fs::exists(e.path() / "realisations")) << e.path();  // kept only until the end
+    run_after += Json::parse(text_of(e.path() / "timing.json")).at("realisations_run").get<int>();
+    run_never += Json::parse(text_of(never / "ensembles" / e.path().filename() / "timing.json"))
+                     .at("realisations_run")
+                     .get<int>();
+  }
+  EXPECT_EQ(run_after, run_never - j.at("resumed_realisations").get<int>());
 
   EXPECT_THROW(run_figures_job(o), UserError);  // finished: nothing to resume
 }

@@ -31,3 +31,13 @@ def test_a_frame_of_another_size_is_refused(tmp_path):
     with pytest.raises(ValueError):
         with gs.Movie(tmp_path / "m.mp4", width=320, height=240) as m:
             m.add(gs.Image.from_array(np.zeros((100, 100, 3), "uint8")))
+
+
+def test_encoder_options_not_given_are_the_movie_commands(tmp_path):
+    # Given ones reach the encoder: a CRF out of 0..51 is refused naming it.
+    with pytest.raises(ValueError, match="crf"):
+        gs.Movie(tmp_path / "bad.mp4", width=320, height=240, crf=99)
+    with gs.Movie(tmp_path / "m.mp4", width=320, height=240) as m:
+        m.add(gs.Image.from_array(__import__("numpy").zeros((240, 320, 3), "uint8")))
+    assert (tmp_path / "m.mp4").stat().st_size > 0
+    assert not (tmp_path / "bad.mp4").exists()

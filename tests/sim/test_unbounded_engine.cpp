@@ -15,6 +15,7 @@
 #include "sim/config.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "sim/memory_budget.h"
 #include "sim/observables.h"
 #include "sim/unbounded_medium.h"
 
@@ -142,6 +143,50 @@ TEST(UnboundedEngine, RefusesToMakeMoreThanParticlesAllows) {
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("--particles 2000"), std::string::npos) << e.what();
   }
+}
+
+// How far a front gets is what a run measures, so an unbounded run is not refused on its cap
+// (a box of that many is); its engines take the memory of what they make from the process's
+// budget and the run ends, naming the memory, when the next cell would not fit.
+TEST(UnboundedEngine, ARunEndsWhenItsMediumWouldNotFitInMemory) {
+  PhysicsConfig c = unbounded(3, 0.5);
+  c.particles = 100000000;  // 63 GB if all were made
+  EXPECT_NO_THROW(validate(c));
+  PhysicsConfig box = c;
+  box.medium = Medium::Box;
+  EXPECT_THROW(check_memory(box), UserError);
+
+  MemoryBudget& budget = MemoryBudget::process();
+  const std::int64_t machine = budget.capacity();
+  ASSERT_EQ(budget.taken(), 0);
+  {
+    auto first = make_simulation(c);
+    first->run_until(300);
+    const std::int64_t held = budget.taken();
+    // What it holds is what it made, at the bytes per particle the estimate uses.
+    EXPECT_EQ(held, std::int64_t(std::ceil(unbounded_bytes_per_particle(c))) *
+                        std::int64_t(first->snapshot().size()));
+    // A machine of 3 MB more: a second run gets no further than about 5000 spheres.
+    budget.set_capacity(held + 3000000);
+    auto second = make_simulation(c);
+    try {
+      second->run_until(1e5);
+      ADD_FAILURE() << "a run past the machine's memory went on";
+    } catch (const UserError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("would not fit in this machine's"), std::string::npos) << m;
+      EXPECT_NE(m.find("beside this process's other runs"), std::string::npos) << m;
+    }
+    EXPECT_LE(budget.taken(), held + 3000000);
+    // One that cannot even make the kick's neighbourhood is refused in its constructor, and
+    // gives back what it took.
+    budget.set_capacity(budget.taken() + 1000);
+    const std::int64_t before = budget.taken();
+    EXPECT_THROW(make_simulation(c), UserError);
+    EXPECT_EQ(budget.taken(), before);
+  }
+  budget.set_capacity(machine);
+  EXPECT_EQ(budget.taken(), 0);  // every engine gave its memory back
 }
 
 // One ensemble at time t: per realisation N_t, E_t, R_t and the active particles' speeds.
