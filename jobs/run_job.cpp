@@ -67,6 +67,7 @@ std::string summary_json(const RunOptions& o, const Simulation& sim, bool interr
   j["overlaps"] = st.overlaps;
   j["max_overlap"] = st.max_overlap;
   j["active"] = s.active;
+  if (p.unbounded()) j["particles_made"] = sim.particle_count();
   j["energy"] = s.energy;
   j["radius_rms"] = s.radius_rms;
   j["speed_rms"] = s.speed_rms;

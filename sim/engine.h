@@ -75,6 +75,8 @@ class Simulation {
   // Processes the next event only (for tests and debugging).
   virtual EventKind step() = 0;
   virtual double time() const = 0;
+  // The particles held: N in a box, those made so far in the unbounded medium.
+  virtual std::int64_t particle_count() const = 0;
   virtual Sample sample() const = 0;
   // The state now, into `out`, reusing its storage: frame loops take one every frame, and a
   // fresh 2.5e5-particle snapshot costs its page faults every time.
@@ -117,6 +119,7 @@ class Engine final : public Simulation {
   void run_until(double t) override;
   EventKind step() override;
   double time() const override { return now_; }
+  std::int64_t particle_count() const override { return size(); }
   Sample sample() const override;
   void snapshot(Snapshot& s) const override;
   using Simulation::snapshot;

@@ -72,6 +72,9 @@ TEST(CliRun, UnboundedMediumRun) {
   EXPECT_GT(active, 50);
   EXPECT_GT(s.size(), static_cast<std::size_t>(active));
   EXPECT_LT(s.size(), 20000u);
+  // summary.json says how many the medium made: the snapshot's particles.
+  EXPECT_EQ(Json::parse(read_file(dir / "summary.json")).at("particles_made").get<std::size_t>(),
+            s.size());
   EXPECT_TRUE(fs::exists(dir / "frames/tsim_300.png"));
   EXPECT_NE(read_file(dir / "run.toml").find("medium = \"unbounded\""), std::string::npos);
   // "The whole box" is the addressable region: refused in one line; the default frames the band.
