@@ -89,14 +89,15 @@ void validate(const PhysicsConfig& c) {
   // Particle indices are 32-bit in the engine.
   if (c.particles >= INT32_MAX)
     bad("--particles " + std::to_string(c.particles) + ": at most " +
-        std::to_string(INT32_MAX - 1) + " (and this many would need about " +
-        rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
+         std::to_string(INT32_MAX - 1) + " (and this many would need about " +
+         rounded(estimated_bytes(c) / 1e9) + " GB of memory)");
   // Run files are TOML, whose integers are signed 64-bit: a larger seed could not be read back.
   if (c.seed > static_cast<std::uint64_t>(INT64_MAX))
-    bad("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) + "]");
+    bad("--seed " + std::to_string(c.seed) + ": must be in [0, " + std::to_string(INT64_MAX) +
+         "]");
   if (c.realisation > static_cast<std::uint64_t>(INT64_MAX))
     bad("--realisation " + std::to_string(c.realisation) + ": must be in [0, " +
-        std::to_string(INT64_MAX) + "]");
+         std::to_string(INT64_MAX) + "]");
   if (c.unbounded()) {
     if (c.dim == 1) bad("--medium unbounded: exists only in 2D and 3D (--dim 2 or 3)");
     if (c.initial != Initial::Kick) bad("--medium unbounded: only for --initial kick");
@@ -165,9 +166,7 @@ Medium default_medium(const PhysicsConfig& c) {
 namespace {
 
 // The engine's records (sim/engine.h) and queue entry, and a snapshot with its extended-XYZ text.
-double engine_bytes(int dim) {
-  return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8;
-}
+double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8; }
 constexpr double kSnapshotBytes = 65 + 140;
 
 // The unbounded medium's cells per made particle: a made cell's list head (4 B) and its place in
