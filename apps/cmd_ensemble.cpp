@@ -40,6 +40,7 @@ void add_ensemble_command(CLI::App& app) {
   sub->add_option("--bins", opt->bins, "Bins of the distributions and profiles")
       ->capture_default_str();
   add_fit_options(*sub, opt->resamples, opt->window);
+  add_checkpoint_minutes_option(*sub, opt->checkpoint_minutes);
   sub->add_flag("--per-realisation", opt->per_realisation,
                 "Keep OUT/realisations/ once finished (input of grainshock merge); it is always "
                 "written while the ensemble runs, so that a killed one resumes");

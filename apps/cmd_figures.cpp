@@ -61,6 +61,7 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
   add_output_options(sub, o.out, o.force, o.quiet);
   sub.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
   sub.add_option("--seed", o.seed, "Master seed of every ensemble")->capture_default_str();
+  add_checkpoint_minutes_option(sub, o.checkpoint_minutes);
 }
 
 // Where and how the job runs, not which ensembles it runs: left out of figures.toml.

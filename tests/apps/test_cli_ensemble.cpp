@@ -274,7 +274,8 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
 
 TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
-  const std::string job = "ensemble " + kSlow + " --realisations 6 --threads 1 --out ";
+  const std::string job =
+      "ensemble " + kSlow + " --realisations 6 --threads 1 --checkpoint-minutes 0.5 --out ";
   ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
   const pid_t pid = spawn_grainshock(job + stopped.string());
   ASSERT_GT(pid, 0);
@@ -290,6 +291,13 @@ TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const std::size_t held = finished_count(stopped / "realisations");
   ASSERT_LT(held, 6u) << "the ensemble finished before the interrupt: make it slower";
   EXPECT_NE(read_file(stopped / "summary.json").find("\"realisations\": " + std::to_string(held)),
+            std::string::npos);
+  // The realisation running at the interrupt kept its state in flight, for the resume to go on
+  // from; the interval between two is in ensemble.toml, so that the resume keeps it.
+  EXPECT_TRUE(fs::is_regular_file(
+      stopped / "realisations/in_flight" /
+      (std::string(6 - std::to_string(held).size(), '0') + std::to_string(held))));
+  EXPECT_NE(read_file(stopped / "ensemble.toml").find("\ncheckpoint-minutes = 0.5\n"),
             std::string::npos);
   // `grainshock resume` continues it (the same command again would too: the test above).
   const auto r = grainshock("resume --quiet --threads 1 " + stopped.string());
