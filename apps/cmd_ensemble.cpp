@@ -48,8 +48,10 @@ void add_ensemble_command(CLI::App& app) {
       "The table of exponents goes to stdout (also with --quiet). Each realisation is written "
       "into OUT/realisations/ as it finishes: the same command into a folder holding an "
       "unfinished ensemble (killed or interrupted) runs only the missing realisations, with the "
-      "same bytes as an uninterrupted run. Under mpirun -n K the realisations are split over K "
-      "ranks of --threads each; rank 0 writes and prints. Results do not depend on K, --threads "
+      "same bytes as an uninterrupted run; a realisation still running goes on from the state it "
+      "keeps every --checkpoint-minutes (and at Ctrl-C) in OUT/realisations/in_flight/. Under "
+      "mpirun -n K the realisations are split over K ranks of --threads each; rank 0 writes and "
+      "prints (and only its realisations keep a state). Results do not depend on K, --threads "
       "or resumes.");
   sub->callback([opt, sub] {
     apply_medium_default(*sub, opt->physics);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -72,8 +73,8 @@ void write_results(const fs::path& dir, const RunnerResult& r) {
   write_ensemble_outputs(dir, r.sums, fit_ensemble(r.sums, fit));
 }
 
-struct Run {
-  RunnerResult result;
+struct Outcome {
+  std::optional<RunnerResult> result;
   std::vector<double> snapshot_times_seen;  // of realisation kStopped
   std::vector<std::string> warnings;
 };
@@ -81,9 +82,9 @@ struct Run {
 // Runs (or resumes) the ensemble into dir/realisations, keeping states in flight at every slice
 // unless `interval` says otherwise; `at_snapshot` is called at each snapshot of kStopped with
 // how many it has seen before in this call.
-Run run(const EnsembleSpec& spec, const fs::path& dir, double interval = 1e-9,
-        const std::function<void(std::size_t)>& at_snapshot = {}) {
-  Run out;
+Outcome run(const EnsembleSpec& spec, const fs::path& dir, double interval = 1e-9,
+            const std::function<void(std::size_t)>& at_snapshot = {}) {
+  Outcome out;
   RunnerOptions o;
   o.realisations_dir = dir / "realisations";
   o.checkpoint_interval = interval;
@@ -103,10 +104,10 @@ fs::path state_of(const fs::path& dir) {
 
 // The ensemble never stopped (no state in flight ever written): its files.
 std::map<std::string, std::string> reference(const EnsembleSpec& spec, const fs::path& dir) {
-  const Run r = run(spec, dir, 0);
-  EXPECT_FALSE(r.result.interrupted);
+  const Outcome r = run(spec, dir, 0);
+  EXPECT_FALSE(r.result->interrupted);
   EXPECT_EQ(r.snapshot_times_seen.size(), 3u);
-  write_results(dir, r.result);
+  write_results(dir, *r.result);
   EXPECT_TRUE(fs::is_empty(dir / "realisations" / kInFlightFolder));
   return files_under(dir);
 }
@@ -118,36 +119,36 @@ void stop_and_kill(const EnsembleSpec& spec, const fs::path& root) {
   const auto ref = reference(spec, root / "reference");
 
   const fs::path stopped = root / "stopped";
-  Run first = run(spec, stopped, 1e-9, [&](std::size_t k) {
+  Outcome first = run(spec, stopped, 1e-9, [&](std::size_t k) {
     if (k == 1) request_stop();
   });
-  EXPECT_TRUE(first.result.interrupted);
-  EXPECT_EQ(first.result.sums.count(), 1u);
+  EXPECT_TRUE(first.result->interrupted);
+  EXPECT_EQ(first.result->sums.count(), 1u);
   ASSERT_TRUE(fs::is_regular_file(state_of(stopped)));
   clear_stop();
-  Run second = run(spec, stopped);
-  EXPECT_FALSE(second.result.interrupted);
+  Outcome second = run(spec, stopped);
+  EXPECT_FALSE(second.result->interrupted);
   EXPECT_TRUE(second.warnings.empty()) << second.warnings.front();
   // Only the snapshot after the stop: it went on from the state.
   EXPECT_EQ(second.snapshot_times_seen.size(), 1u);
   EXPECT_FALSE(fs::exists(state_of(stopped)));
-  write_results(stopped, second.result);
+  write_results(stopped, *second.result);
   EXPECT_EQ(files_under(stopped), ref);
 
   // A kill: the state written by the last slice before the second snapshot, kept aside then.
   const fs::path killed = root / "killed";
   const fs::path aside = root / "aside";
-  Run whole = run(spec, killed, 1e-9, [&](std::size_t k) {
+  Outcome whole = run(spec, killed, 1e-9, [&](std::size_t k) {
     if (k == 1) fs::copy_file(state_of(killed), aside);
   });
-  EXPECT_FALSE(whole.result.interrupted);
+  EXPECT_FALSE(whole.result->interrupted);
   EXPECT_FALSE(fs::exists(state_of(killed)));  // removed once the realisation was written
   fs::remove_all(killed / "realisations" / realisation_folder(kStopped));
   fs::copy_file(aside, state_of(killed));
-  Run after = run(spec, killed, 0);
-  EXPECT_EQ(after.result.resumed, 1u);
+  Outcome after = run(spec, killed, 0);
+  EXPECT_EQ(after.result->resumed, 1u);
   EXPECT_EQ(after.snapshot_times_seen.size(), 2u);
-  write_results(killed, after.result);
+  write_results(killed, *after.result);
   EXPECT_EQ(files_under(killed), ref);
 }
 
@@ -186,7 +187,7 @@ TEST_F(InFlight, TruncatedOrCorruptStateRunsTheRealisationAgain) {
       f.seekp(at);
       f.put(static_cast<char>(~byte));
     }
-    const Run again = run(spec, dir);
+    const Outcome again = run(spec, dir);
     ASSERT_EQ(again.warnings.size(), 1u);
     const std::string& w = again.warnings.front();
     EXPECT_NE(w.find(state.string()), std::string::npos) << w;
@@ -194,7 +195,7 @@ TEST_F(InFlight, TruncatedOrCorruptStateRunsTheRealisationAgain) {
     EXPECT_NE(w.find("runs again from t = 0"), std::string::npos) << w;
     EXPECT_EQ(w.find('\n'), std::string::npos) << w;
     EXPECT_EQ(again.snapshot_times_seen.size(), 3u);  // from t = 0
-    write_results(dir, again.result);
+    write_results(dir, *again.result);
     EXPECT_EQ(files_under(dir), ref);
   }
 }
