@@ -212,11 +212,15 @@ TEST(CliEnsemble, ExponentsGoToStdoutEvenWhenQuiet) {
   EXPECT_TRUE(fs::is_directory(again / "realisations/000002"));
 }
 
+// Realisation folders are named by their index; beside them are temporaries (".NAME.tmp.PID")
+// and in_flight/, the states of running ones.
 std::size_t finished_count(const fs::path& rdir) {
   std::size_t n = 0;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(rdir, ec))
-    n += e.is_directory() && !e.path().filename().string().starts_with(".");
+  for (const auto& e : fs::directory_iterator(rdir, ec)) {
+    const std::string name = e.path().filename().string();
+    n += e.is_directory() && name.find_first_not_of("0123456789") == std::string::npos;
+  }
   return n;
 }
 
