@@ -50,7 +50,8 @@ std::unique_ptr<Simulation> load_in_flight(const std::filesystem::path& file,
   if (!std::filesystem::exists(path, ec)) path = previous_of(file);
   if (!std::filesystem::exists(path, ec)) return nullptr;
   CheckpointReader in(path);
-  const std::string name = "'" + path.string() + "'";
+  std::string name = "'";  // appended: GCC 12 warns falsely (-Wrestrict) on "'" + std::string
+  name.append(path.string()).append("'");
   if (in.string() != kTag) throw UserError(name + ": not a realisation in flight");
   if (in.string() != spec_identity(spec) || in.value<std::uint64_t>() != index)
     throw UserError(name + ": in flight for another ensemble or realisation");
