@@ -118,6 +118,8 @@ std::string job_toml(const EnsembleJob& job) {
     s += "window = [" + format_double(job.fit.window->t_lo) + ", " +
          format_double(job.fit.window->t_hi) + "]\n";
   if (job.keep_realisations) s += "per-realisation = true\n";
+  if (job.checkpoint_minutes != kCheckpointMinutes)
+    s += "checkpoint-minutes = " + format_double(job.checkpoint_minutes) + "\n";
   return s;
 }
 
@@ -147,6 +149,12 @@ EnsembleJob read_job(const std::filesystem::path& file) {
     const auto v = n->value<bool>();
     if (!v) throw UserError(where + ": key 'per-realisation' is not true or false");
     job.keep_realisations = *v;
+  }
+  if (const auto* n = t.get("checkpoint-minutes")) {
+    const auto v = n->value<double>();
+    if (!v || !(*v >= 0) || !std::isfinite(*v))
+      throw UserError(where + ": key 'checkpoint-minutes' is not a number of minutes >= 0");
+    job.checkpoint_minutes = *v;
   }
   try {
     check_fit_options(job.spec, job.fit);

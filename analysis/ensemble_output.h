@@ -19,19 +19,24 @@
 
 namespace gs {
 
+inline constexpr double kCheckpointMinutes = 10;
+
 // What an ensemble folder was asked to hold: ensemble.toml. Written before the first realisation
 // runs, so that a killed ensemble can be resumed from its folder alone.
 struct EnsembleJob {
   EnsembleSpec spec;
   FitOptions fit;
   bool keep_realisations = false;  // --per-realisation: keep realisations/ once finished
+  // --checkpoint-minutes: wall time between two writes of a running realisation's state
+  // (RunnerOptions::checkpoint_interval); how the job runs, not what it holds.
+  double checkpoint_minutes = kCheckpointMinutes;
 };
 
 // UserError naming --resamples or --window if the fit cannot be made on this spec's data.
 void check_fit_options(const EnsembleSpec& spec, const FitOptions& fit);
 
-// spec_toml() plus resamples, window and per-realisation: every key a flag of `ensemble`, so the
-// file is its --config.
+// spec_toml() plus resamples, window, per-realisation and checkpoint-minutes (when not the
+// default): every key a flag of `ensemble`, so the file is its --config.
 std::string job_toml(const EnsembleJob& job);
 // UserError naming the file.
 EnsembleJob read_job(const std::filesystem::path& file);

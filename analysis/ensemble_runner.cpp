@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/realisation_in_flight.h"
 #include "sim/error.h"
 #include "sim/stop.h"
 
@@ -68,9 +69,14 @@ struct Finished {
 // other ranks and to the disk; workers only simulate.
 class LocalWork {
  public:
+  // `in_flight.file` is the folder of the states in flight (empty: none), the rest as given to
+  // each realisation.
   LocalWork(const EnsembleSpec& spec, std::vector<std::uint64_t> indices, int threads,
-            SnapshotHook hook)
-      : spec_(spec), indices_(std::move(indices)), hook_(std::move(hook)) {
+            SnapshotHook hook, InFlightOptions in_flight)
+      : spec_(spec),
+        indices_(std::move(indices)),
+        hook_(std::move(hook)),
+        in_flight_(std::move(in_flight)) {
     const std::size_t n = std::min<std::size_t>(std::size_t(threads), indices_.size());
     running_ = n;
     for (std::size_t w = 0; w < n; ++w) pool_.emplace_back([this] { work(); });
@@ -104,8 +110,10 @@ class LocalWork {
       if (k >= indices_.size() || !pulling_) break;
       Finished f;
       f.index = indices_[k];
+      InFlightOptions in_flight = in_flight_;
+      if (!in_flight.file.empty()) in_flight.file /= realisation_folder(f.index);
       try {
-        if (!simulate_realisation(spec_, f.index, r, hook_)) {
+        if (!simulate_realisation(spec_, f.index, r, hook_, in_flight)) {
           interrupted_ = true;
           break;
         }
@@ -137,6 +145,7 @@ class LocalWork {
   const EnsembleSpec spec_;
   const std::vector<std::uint64_t> indices_;
   const SnapshotHook hook_;
+  const InFlightOptions in_flight_;
   std::atomic<std::size_t> next_{0};
   std::atomic<bool> pulling_{true}, interrupted_{false};
   std::mutex mutex_;
@@ -156,6 +165,24 @@ void remove_stale_temporaries(const std::filesystem::path& dir) {
     const std::string name = e.path().filename().string();
     if (name.starts_with(".") && name.find(".tmp.") != std::string::npos) fs::remove_all(e, ec);
   }
+}
+
+// Makes the folder of the states in flight and leaves in it only those of realisations still to
+// run: a kill can leave the state of one written since, and temporaries of a write.
+void keep_in_flight_of(const std::filesystem::path& in_flight,
+                       const std::vector<std::uint64_t>& todo) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(in_flight, ec);
+  if (ec) throw UserError("cannot create '" + in_flight.string() + "': " + ec.message());
+  std::vector<std::string> keep;
+  for (auto index : todo) {
+    keep.push_back(realisation_folder(index));
+    keep.push_back(realisation_folder(index) + ".previous");
+  }
+  for (const auto& e : fs::directory_iterator(in_flight, ec))
+    if (std::find(keep.begin(), keep.end(), e.path().filename().string()) == keep.end())
+      fs::remove_all(e.path(), ec);
 }
 
 }  // namespace
@@ -202,6 +229,15 @@ RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
     if (!std::binary_search(result.sums.indices().begin(), result.sums.indices().end(), index))
       todo.push_back(index);
   }
+  InFlightOptions in_flight;
+  if (!dir.empty()) {
+    in_flight.file = dir / kInFlightFolder;
+    in_flight.interval = o.checkpoint_interval;
+    in_flight.warn = o.on_warning ? o.on_warning : [](const std::string& what) {
+      std::fprintf(stderr, "grainshock: warning: %s\n", what.c_str());
+    };
+    keep_in_flight_of(in_flight.file, todo);
+  }
 
   // Round-robin shares: realisations cost about the same, and the sums do not care.
   const int K = ranks.size();
@@ -222,7 +258,7 @@ RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
   bool failure_is_user = true;
   std::vector<bool> done(std::size_t(K), false);
   int ranks_done = 1;  // rank 0's own share is tracked by LocalWork
-  LocalWork local(spec, share[0], o.threads, o.on_snapshot);
+  LocalWork local(spec, share[0], o.threads, o.on_snapshot, in_flight);
   bool stop_sent = false;
   auto stop_others = [&](int sig) {
     if (stop_sent) return;
@@ -243,7 +279,10 @@ RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
     try {
       const auto p = dir.empty() ? std::filesystem::path(realisation_folder(index))
                                  : dir / realisation_folder(index);
-      if (!dir.empty()) write_realisation(p, files);
+      if (!dir.empty()) {
+        write_realisation(p, files);
+        remove_in_flight(dir / kInFlightFolder / realisation_folder(index));
+      }
       result.sums.add(parse_realisation(files, index, p), "realisation " + std::to_string(index));
       ++finished;
       if (o.on_progress) o.on_progress(finished, todo.size());
@@ -328,7 +367,7 @@ int serve_ensemble(Ranks& ranks) {
     return ranks.finish(0);
   }
 
-  LocalWork local(spec, indices, threads, {});
+  LocalWork local(spec, indices, threads, {}, {});  // no folder: nothing kept in flight
   for (bool over = false; !over;) {
     while (auto f = local.next(kPollEvery, over)) {
       std::string out;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "analysis/ensemble_ranks.h"
@@ -24,6 +25,14 @@ struct RunnerOptions {
   // If not empty: each realisation is written to realisations_dir / realisation_folder(k) as it
   // finishes, and realisations found there already are read instead of run (resume).
   std::filesystem::path realisations_dir;
+  // With realisations_dir: wall seconds between two writes of each running realisation's state
+  // into realisations_dir / kInFlightFolder (analysis/realisation_in_flight.h), and one at a stop
+  // request, from which a resumed ensemble goes on; 0: never written. Only rank 0's workers keep
+  // them: the other ranks have no folder, and run a realisation they are handed from t = 0.
+  double checkpoint_interval = 600;
+  // A state in flight that could not be used or written, one line, from worker threads of rank 0
+  // (must be thread-safe); empty: "grainshock: warning: ..." on stderr.
+  std::function<void(const std::string&)> on_warning;
   SnapshotHook on_snapshot;  // called from worker threads of rank 0 only; must be thread-safe
   // Called on rank 0's main thread after each realisation finished in this call, with
   // (finished, to run in this call).
@@ -37,8 +46,10 @@ struct RunnerResult {
   std::uint64_t resumed = 0;  // realisations read from realisations_dir instead of run
 };
 
-// Folder name of realisation k under realisations_dir.
+// Folder name of realisation k under realisations_dir; its state in flight is the file of that
+// name in realisations_dir / kInFlightFolder, removed once the realisation is written.
 std::string realisation_folder(std::uint64_t index);
+inline constexpr const char* kInFlightFolder = "in_flight";
 
 // The spec's realisations that realisations_dir holds finished.
 std::vector<std::uint64_t> finished_realisations(const std::filesystem::path& realisations_dir,

@@ -83,12 +83,26 @@ std::vector<double> sample_times(const EnsembleSpec& spec);
 // Measures one snapshot on the spec's binnings.
 SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s);
 
-// Runs realisation `index` of the spec. `on_snapshot` (optional) sees each snapshot before it is
-// dropped (figures keep some for the renderer). Returns false if a stop was requested (the
-// realisation is then incomplete and must not be used).
+// Where a realisation keeps its state in flight (analysis/realisation_in_flight.h): the engine and
+// the measures taken so far, written every `interval` of wall time and at a stop request, so that
+// a realisation of hours stopped or killed goes on from there, to the same bytes.
+struct InFlightOptions {
+  std::filesystem::path file;  // empty: none is written or read
+  // Wall seconds between two writes; 0: never written (one an earlier run left is still read).
+  double interval = 0;
+  // A state found but unusable (truncated, corrupt, of another build or ensemble): the
+  // realisation runs from t = 0, which gives the same bytes, and this hears why (one line).
+  std::function<void(const std::string&)> warn;
+};
+
+// Runs realisation `index` of the spec, from the state in `in_flight.file` if there is one.
+// `on_snapshot` (optional) sees each snapshot before it is dropped (those before a state read
+// back are not seen again). Returns false if a stop was requested (the realisation is then
+// incomplete and must not be used).
 using SnapshotHook = std::function<void(std::uint64_t index, const Snapshot&)>;
 bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisation& out,
-                          const SnapshotHook& on_snapshot = {});
+                          const SnapshotHook& on_snapshot = {},
+                          const InFlightOptions& in_flight = {});
 
 // Folder layout: timeseries.csv, distributions.csv (one row per snapshot time and bin),
 // snapshot_scalars.csv (one row per snapshot time).

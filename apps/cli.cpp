@@ -279,4 +279,12 @@ CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bo
   return o;
 }
 
+void add_checkpoint_minutes_option(CLI::App& sub, double& minutes) {
+  sub.add_option("--checkpoint-minutes", minutes,
+                 "Wall minutes between two writes of each running realisation's state (into "
+                 "realisations/in_flight), from which resume goes on after a kill (at least 50 "
+                 "times the last write's duration apart); 0: never")
+      ->capture_default_str();
+}
+
 }  // namespace gs::app

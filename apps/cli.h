@@ -55,4 +55,7 @@ void apply_medium_default(CLI::App& sub, PhysicsConfig& c, bool box = false);
 // command without a default folder can make it required.
 CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bool& quiet);
 
+// --checkpoint-minutes of the commands that run ensembles (`ensemble`, `figures`).
+void add_checkpoint_minutes_option(CLI::App& sub, double& minutes);
+
 }  // namespace gs::app

@@ -40,6 +40,7 @@ void add_ensemble_command(CLI::App& app) {
   sub->add_option("--bins", opt->bins, "Bins of the distributions and profiles")
       ->capture_default_str();
   add_fit_options(*sub, opt->resamples, opt->window);
+  add_checkpoint_minutes_option(*sub, opt->checkpoint_minutes);
   sub->add_flag("--per-realisation", opt->per_realisation,
                 "Keep OUT/realisations/ once finished (input of grainshock merge); it is always "
                 "written while the ensemble runs, so that a killed one resumes");
@@ -47,8 +48,10 @@ void add_ensemble_command(CLI::App& app) {
       "The table of exponents goes to stdout (also with --quiet). Each realisation is written "
       "into OUT/realisations/ as it finishes: the same command into a folder holding an "
       "unfinished ensemble (killed or interrupted) runs only the missing realisations, with the "
-      "same bytes as an uninterrupted run. Under mpirun -n K the realisations are split over K "
-      "ranks of --threads each; rank 0 writes and prints. Results do not depend on K, --threads "
+      "same bytes as an uninterrupted run; a realisation still running goes on from the state it "
+      "keeps every --checkpoint-minutes (and at Ctrl-C) in OUT/realisations/in_flight/. Under "
+      "mpirun -n K the realisations are split over K ranks of --threads each; rank 0 writes and "
+      "prints (and only its realisations keep a state). Results do not depend on K, --threads "
       "or resumes.");
   sub->callback([opt, sub] {
     apply_medium_default(*sub, opt->physics);

@@ -61,6 +61,7 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
   add_output_options(sub, o.out, o.force, o.quiet);
   sub.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
   sub.add_option("--seed", o.seed, "Master seed of every ensemble")->capture_default_str();
+  add_checkpoint_minutes_option(sub, o.checkpoint_minutes);
 }
 
 // Where and how the job runs, not which ensembles it runs: left out of figures.toml.
@@ -112,9 +113,9 @@ void add_figures_command(CLI::App& app) {
       app.add_subcommand("figures", "Reproduce the paper's Figs. 1-5 and a report with numbers");
   add_figures_flags(*sub, *flags);
   sub->footer(
-      "A job stopped by Ctrl-C or killed goes on from the realisations it finished with "
-      "grainshock resume DIR, to the same files as a job never stopped (figures.toml holds its "
-      "settings).");
+      "A job stopped by Ctrl-C or killed goes on from the realisations it finished, and from the "
+      "state each running one keeps every --checkpoint-minutes (and at Ctrl-C), with grainshock "
+      "resume DIR, to the same files as a job never stopped (figures.toml holds its settings).");
   sub->callback([flags, sub] {
     const int rc = run(*flags, *sub);
     if (rc != kExitSuccess) throw Exit{rc};

@@ -2,7 +2,8 @@
 // the unbounded medium against the box (issue 31 part 1): cost per collision and peak memory.
 // Each measurement runs in a child process of its own, because a process's peak resident set
 // only grows: the parent reads the child's peak from wait4, the child sends what it holds after
-// construction and after the run (VmRSS) through a pipe.
+// construction and after the run (VmRSS) through a pipe. And the size and cost of a long
+// realisation's state in flight (analysis/realisation_in_flight.h), measured in this process.
 #include <malloc.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -10,13 +11,16 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "analysis/realisation_in_flight.h"
 #include "bench/bench.h"
 #include "jobs/figures_plan.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "sim/recorder.h"
 
 namespace gs::bench {
 namespace {
@@ -147,29 +151,73 @@ std::vector<Figure> unbounded_against_box(int dim, std::int64_t n, double t_max,
           {"unbounded_particles_made_mean", open.made, "", ""}};
 }
 
-// One realisation of `figures --limit`'s 3D r = 0.9 case (its physics and cap on made particles,
-// from the plan) run to the time its E_t slope is expected to plateau: what each of that case's
-// realisations spends before its plateau window starts. Measured (t = 3.5e5, load ~3): 272 s
-// wall and CPU, 2.35e5 collisions per CPU-second, 2.24e6 active and 2.35e6 made, peak 934 MB (398
-// B per made sphere, the engine's estimate 425).
-std::vector<Figure> kick_to_plateau() {
+// `figures --limit`'s 3D r = 0.9 case (its physics and cap on made particles), from the plan.
+jobs::FigureCase limit_3d_r09() {
   const jobs::FiguresPlan plan = jobs::figures_plan(jobs::FiguresMode::Full, 1, false, true);
   for (const auto& c : plan.cases) {
     const PhysicsConfig& p = c.spec.physics;
-    if (c.role != jobs::CaseRole::Limit || p.dim != 3 || p.restitution != 0.9) continue;
-    PhysicsConfig run = p;
-    run.t_max = c.plateau_start;
-    const Footprint f = kick_footprint(run);
-    return {{"t_max", run.t_max, "", ""},
-            {"peak_megabytes", f.peak / 1e6, "MB", ""},
-            {"wall_seconds", f.run_wall, "s", ""},
-            {"cpu_seconds", f.run_cpu, "s", ""},
-            {"collisions_per_cpu_second", f.collisions / f.run_cpu, "1/s", ""},
-            {"active", f.active, "", ""},
-            {"particles_made", f.made, "", ""},
-            {"peak_bytes_per_made_particle", f.peak / std::max(1.0, f.made), "B", ""}};
+    if (c.role == jobs::CaseRole::Limit && p.dim == 3 && p.restitution == 0.9) return c;
   }
   throw UserError("bench: the --limit plan has no 3D r = 0.9 case");
+}
+
+// One realisation of that case run to the time its E_t slope is expected to plateau: what each
+// of its realisations spends before its plateau window starts. Measured (t = 3.5e5, load ~3):
+// 272 s wall and CPU, 2.35e5 collisions per CPU-second, 2.24e6 active and 2.35e6 made, peak
+// 934 MB (398 B per made sphere, the engine's estimate 425).
+std::vector<Figure> kick_to_plateau() {
+  const jobs::FigureCase c = limit_3d_r09();
+  PhysicsConfig run = c.spec.physics;
+  run.t_max = c.plateau_start;
+  const Footprint f = kick_footprint(run);
+  return {{"t_max", run.t_max, "", ""},
+          {"peak_megabytes", f.peak / 1e6, "MB", ""},
+          {"wall_seconds", f.run_wall, "s", ""},
+          {"cpu_seconds", f.run_cpu, "s", ""},
+          {"collisions_per_cpu_second", f.collisions / f.run_cpu, "1/s", ""},
+          {"active", f.active, "", ""},
+          {"particles_made", f.made, "", ""},
+          {"peak_bytes_per_made_particle", f.peak / std::max(1.0, f.made), "B", ""}};
+}
+
+// The state in flight (analysis/realisation_in_flight.h) of one realisation of that case at
+// t = 1e5: its size and the seconds to write it (synced, renamed) and read it back, what a
+// realisation of `figures --limit` pays every --checkpoint-minutes. The measures so far it
+// holds are a few kB of text; the engine is the rest.
+std::vector<Figure> in_flight_3d() {
+  const jobs::FigureCase c = limit_3d_r09();
+  const EnsembleSpec& spec = c.spec;
+  const std::uint64_t index = spec.physics.realisation;
+  auto sim = make_simulation(spec.physics);
+  const double c0 = cpu_seconds();
+  sim->run_until(1e5);
+  const double run_cpu = cpu_seconds() - c0;
+  Recorder recorder(spec.physics);
+  Realisation partial;
+  partial.index = index;
+  partial.timeseries.names = recorder.columns();
+  partial.timeseries.names.push_back("front_radius");
+  partial.timeseries.columns.assign(partial.timeseries.names.size(), {});
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("grainshock_bench_in_flight_" + std::to_string(::getpid()));
+  const double w0 = wall_seconds();
+  save_in_flight(file, spec, index, 0, *sim, recorder, partial);
+  const double write = wall_seconds() - w0;
+  const double bytes = static_cast<double>(std::filesystem::file_size(file));
+  const double made = static_cast<double>(sim->snapshot().size());
+  sim.reset();
+  std::size_t next = 0;
+  const double r0 = wall_seconds();
+  const auto loaded = load_in_flight(file, spec, index, recorder, partial, next);
+  const double read = wall_seconds() - r0;
+  remove_in_flight(file);
+  return {{"t", 1e5, "", ""},
+          {"run_cpu_seconds", run_cpu, "s", ""},
+          {"particles_made", made, "", ""},
+          {"state_megabytes", bytes / 1e6, "MB", ""},
+          {"state_bytes_per_made_particle", bytes / std::max(1.0, made), "B", ""},
+          {"write_seconds", write, "s", "small against --checkpoint-minutes"},
+          {"read_seconds", read, "s", ""}};
 }
 
 }  // namespace
@@ -195,6 +243,10 @@ void add_memory_cases(std::vector<Case>& cases) {
                    "3D r = 0.9 kick of figures --limit in the unbounded medium to the time its "
                    "E_t slope's plateau starts, one realisation",
                    true, kick_to_plateau});
+  cases.push_back({"io/in_flight_3d_r0.9",
+                   "the state in flight of a 3D r = 0.9 realisation of figures --limit at t = 1e5: "
+                   "size, write and read seconds",
+                   true, in_flight_3d});
 }
 
 }  // namespace gs::bench

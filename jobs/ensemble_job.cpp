@@ -46,6 +46,7 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
   RunnerOptions ro;
   ro.threads = threads;
   ro.realisations_dir = rdir;
+  ro.checkpoint_interval = 60 * job.checkpoint_minutes;
   ro.ranks = &ranks;
   ro.on_progress = [&](std::uint64_t done, std::uint64_t total) {
     progress.update(double(done) / double(total), std::to_string(held + done) + " of " +
@@ -83,6 +84,12 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
 
 }  // namespace
 
+double checked_checkpoint_minutes(double minutes) {
+  if (!(minutes >= 0) || !std::isfinite(minutes))
+    throw UsageError("--checkpoint-minutes must be a number of minutes >= 0 (0: never)");
+  return minutes;
+}
+
 FitOptions fit_options(int resamples, const std::vector<double>& window, const EnsembleSpec& spec) {
   FitOptions fit;
   fit.resamples = resamples;
@@ -109,10 +116,13 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   job.spec = checked(job.spec);
   job.fit = fit_options(o.resamples, o.window, job.spec);
   job.keep_realisations = o.per_realisation;
+  job.checkpoint_minutes = checked_checkpoint_minutes(o.checkpoint_minutes);
 
   const fs::path dir(o.out);
   const bool resume = !o.force && holds_unfinished_ensemble(dir);
-  if (resume && job_toml(read_job(dir / "ensemble.toml")) != job_toml(job))
+  EnsembleJob held = resume ? read_job(dir / "ensemble.toml") : job;
+  held.checkpoint_minutes = job.checkpoint_minutes;  // how often it writes, not what it holds
+  if (job_toml(held) != job_toml(job))
     throw UserError("--out " + o.out +
                     ": holds an unfinished ensemble of other settings (its ensemble.toml); "
                     "resume it with: grainshock resume " +
@@ -124,8 +134,8 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   if (!resume) {
     std::error_code ec;
     fs::remove_all(dir / "realisations", ec);  // --force starts again
-    write_file_atomic(dir / "ensemble.toml", job_toml(job));
   }
+  write_file_atomic(dir / "ensemble.toml", job_toml(job));
   return run_job(dir, job, o.threads, o.quiet, o.progress, ranks);
 }
 

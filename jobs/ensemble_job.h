@@ -24,8 +24,14 @@ struct EnsembleOptions {
   bool force = false, quiet = false, per_realisation = false;
   ProgressFactory progress;  // the line of the run; none by default
   int per_decade = 20, bins = 60, resamples = 1000;
+  // Wall minutes between two writes of each running realisation's state into OUT/realisations/
+  // (and one at Ctrl-C), from which a resumed ensemble goes on; 0: never.
+  double checkpoint_minutes = kCheckpointMinutes;
   std::vector<double> snapshot_times, window;
 };
+
+// --checkpoint-minutes of `ensemble` and `figures`, checked (UsageError naming it).
+double checked_checkpoint_minutes(double minutes);
 
 // The fit of --resamples and --window, checked against the spec (UserError naming the flag).
 FitOptions fit_options(int resamples, const std::vector<double>& window, const EnsembleSpec& spec);
@@ -38,7 +44,8 @@ struct EnsembleResult {
 
 // Checks every option before the folder is touched (UserError naming it), then runs what the
 // folder still lacks: all of it for a new folder, the missing realisations of an unfinished one
-// with the same settings (UserError for one of other settings, unless --force).
+// with the same settings (UserError for one of other settings, unless --force; the checkpoint
+// interval may differ, and the new one is kept).
 EnsembleResult run_ensemble_job(const EnsembleOptions& o);
 
 // Whether `dir` holds an ensemble that can be resumed (ensemble.toml, with the results not

@@ -118,6 +118,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     RunnerOptions ro;
     ro.threads = c.threads_of(o.threads);
     ro.realisations_dir = case_realisations(dir, c);
+    ro.checkpoint_interval = 60 * o.checkpoint_minutes;
     const std::uint64_t held = finished_realisations(ro.realisations_dir, c.spec).size();
     ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
       progress->update(double(done_before + held + done) / double(total),
@@ -322,6 +323,7 @@ constexpr const char* kEstimateReplaced[] = {"estimate_sample"};
 FiguresResult run_figures_job(const FiguresOptions& o) {
   if (o.threads < 1) throw UsageError("--threads must be at least 1");
   if (o.sample < 1) throw UsageError("--sample must be at least 1");
+  checked_checkpoint_minutes(o.checkpoint_minutes);
   if (o.limit_dim != 0 && o.limit_dim != 2 && o.limit_dim != 3)
     throw UsageError("--limit-dim must be 2 or 3");
   if (o.limit_dim != 0 && !o.limit) throw UsageError("--limit-dim needs --limit");

@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/ensemble_output.h"
 #include "jobs/figures_plan.h"
 #include "jobs/progress.h"
 
@@ -25,6 +26,9 @@ struct FiguresOptions {
   bool force = false, quiet = false;
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::uint64_t seed = 1;
+  // Wall minutes between two writes of each running realisation's state beside the case's
+  // finished realisations (and one at Ctrl-C), from which `resume` goes on; 0: never.
+  double checkpoint_minutes = kCheckpointMinutes;
   std::vector<std::string> formats{"png"};  // of the figures (the .gp scripts write any)
   ProgressFactory progress;                 // the line of the ensembles; none by default
   // The command's settings as TOML, written to figures.toml (not by --estimate) so that the

@@ -212,11 +212,15 @@ TEST(CliEnsemble, ExponentsGoToStdoutEvenWhenQuiet) {
   EXPECT_TRUE(fs::is_directory(again / "realisations/000002"));
 }
 
+// Realisation folders are named by their index; beside them are temporaries (".NAME.tmp.PID")
+// and in_flight/, the states of running ones.
 std::size_t finished_count(const fs::path& rdir) {
   std::size_t n = 0;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(rdir, ec))
-    n += e.is_directory() && !e.path().filename().string().starts_with(".");
+  for (const auto& e : fs::directory_iterator(rdir, ec)) {
+    const std::string name = e.path().filename().string();
+    n += e.is_directory() && name.find_first_not_of("0123456789") == std::string::npos;
+  }
   return n;
 }
 
@@ -274,7 +278,8 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
 
 TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
-  const std::string job = "ensemble " + kSlow + " --realisations 6 --threads 1 --out ";
+  const std::string job =
+      "ensemble " + kSlow + " --realisations 6 --threads 1 --checkpoint-minutes 0.5 --out ";
   ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
   const pid_t pid = spawn_grainshock(job + stopped.string());
   ASSERT_GT(pid, 0);
@@ -290,6 +295,13 @@ TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const std::size_t held = finished_count(stopped / "realisations");
   ASSERT_LT(held, 6u) << "the ensemble finished before the interrupt: make it slower";
   EXPECT_NE(read_file(stopped / "summary.json").find("\"realisations\": " + std::to_string(held)),
+            std::string::npos);
+  // The realisation running at the interrupt kept its state in flight, for the resume to go on
+  // from; the interval between two is in ensemble.toml, so that the resume keeps it.
+  EXPECT_TRUE(fs::is_regular_file(
+      stopped / "realisations/in_flight" /
+      (std::string(6 - std::to_string(held).size(), '0') + std::to_string(held))));
+  EXPECT_NE(read_file(stopped / "ensemble.toml").find("\ncheckpoint-minutes = 0.5\n"),
             std::string::npos);
   // `grainshock resume` continues it (the same command again would too: the test above).
   const auto r = grainshock("resume --quiet --threads 1 " + stopped.string());
