@@ -299,6 +299,15 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   return m;
 }
 
+Realisation empty_realisation(const Recorder& recorder, std::uint64_t index) {
+  Realisation r;
+  r.index = index;
+  r.timeseries.names = recorder.columns();
+  r.timeseries.names.push_back("front_radius");
+  r.timeseries.columns.assign(r.timeseries.names.size(), {});
+  return r;
+}
+
 bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisation& out,
                           const SnapshotHook& on_snapshot, const InFlightOptions& in_flight) {
   PhysicsConfig c = spec.physics;
@@ -321,11 +330,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
   if (!sim) {
     sim = make_simulation(c);
     first = 0;
-    out = Realisation{};
-    out.index = index;
-    out.timeseries.names = recorder.columns();
-    out.timeseries.names.push_back("front_radius");
-    out.timeseries.columns.assign(out.timeseries.names.size(), {});
+    out = empty_realisation(recorder, index);
   }
   const auto active_column =
       std::size_t(std::find(recorder.columns().begin(), recorder.columns().end(), "active") -

@@ -19,6 +19,7 @@
 #include "sim/config.h"
 #include "sim/histogram.h"
 #include "sim/observables.h"
+#include "sim/recorder.h"
 #include "sim/snapshot.h"
 
 namespace gs {
@@ -76,6 +77,9 @@ struct Realisation {
   Table timeseries;
   std::vector<SnapshotMeasures> snapshots;  // one per spec snapshot time
 };
+
+// Realisation `index` before its first sample: the recorder's columns and front_radius, no rows.
+Realisation empty_realisation(const Recorder& recorder, std::uint64_t index);
 
 // Sample times of the shared grid: log_times(0.1, t_max, per_decade) with the snapshot times.
 std::vector<double> sample_times(const EnsembleSpec& spec);

@@ -193,18 +193,14 @@ std::vector<Figure> in_flight_3d() {
   sim->run_until(1e5);
   const double run_cpu = cpu_seconds() - c0;
   Recorder recorder(spec.physics);
-  Realisation partial;
-  partial.index = index;
-  partial.timeseries.names = recorder.columns();
-  partial.timeseries.names.push_back("front_radius");
-  partial.timeseries.columns.assign(partial.timeseries.names.size(), {});
+  Realisation partial = empty_realisation(recorder, index);
   const auto file = std::filesystem::temp_directory_path() /
                     ("grainshock_bench_in_flight_" + std::to_string(::getpid()));
   const double w0 = wall_seconds();
   save_in_flight(file, spec, index, 0, *sim, recorder, partial);
   const double write = wall_seconds() - w0;
   const double bytes = static_cast<double>(std::filesystem::file_size(file));
-  const double made = static_cast<double>(sim->snapshot().size());
+  const double made = static_cast<double>(sim->particle_count());
   sim.reset();
   std::size_t next = 0;
   const double r0 = wall_seconds();
