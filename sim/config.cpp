@@ -165,8 +165,9 @@ Medium default_medium(const PhysicsConfig& c) {
 
 namespace {
 
-// The engine's records (sim/engine.h) and queue entry, and a snapshot with its extended-XYZ text.
-double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8; }
+// A moving particle's record (sim/engine.h), queue entry and the dead slot it left in the resting
+// store (sim/resting_store.h), and a snapshot with its extended-XYZ text.
+double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8 + 8.0 * dim; }
 constexpr double kSnapshotBytes = 65 + 140;
 
 // The unbounded medium's cells per made particle: a made cell's list head (4 B) and its place in
@@ -190,8 +191,8 @@ double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
                (engine + unbounded_cell_bytes(c) + snapshot * snapshot_copies) +
            (1 << 20) * 48.0;
   }
-  // The initial state with the copies that sorting it makes.
-  const double initial = 32.0 * c.dim + 48;
+  // Random sequential addition's centres, links and cell heads (about 4 cells a particle).
+  const double initial = 8.0 * c.dim + 20;
   const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
   return static_cast<double>(c.particles) * (engine + initial + snapshot * snapshot_copies) +
          8 * cells;

@@ -17,34 +17,36 @@ namespace gs {
 
 template <int D>
 Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
-    : config_(c), grid_(c.box()), queue_(init.position.size()) {
+    : config_(c), grid_(c.box()), queue_(0, init.position.size()) {
   const std::size_t n = init.position.size();
-  GS_CHECK(n >= 2 && init.velocity.size() == n);
+  GS_CHECK(n >= 2 && (init.velocity.empty() ? init.kicked >= 0 : init.velocity.size() == n));
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   GS_CHECK(D == 1 || grid_.per_side() <= INT16_MAX);  // Prediction::cell; validate() tells users
-  sort_by_cell(init);
-  kin_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    kin_[i] = {init.position[tag_[i]], 0.0, init.velocity[tag_[i]], 0};
-  // The initial state is not needed any more: freed before the other arrays are made, so that
-  // the peak memory of a start is what the engine holds, not that plus the state (48 B a
-  // sphere; sim/bytes_per_particle_3d).
-  init = InitialState<D>{};
   reserve_particles(n);
-  image_.assign(n, IVec<D>::Zero());
   head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
-  std::fill_n(head_.data(), head_.size(), kEmptyCell);
-  next_.assign(n, -1);
-  prev_.assign(n, -1);
-  pred_.assign(n, Prediction{});
-  first_collision_.assign(n, -1.0);
-
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto id = static_cast<std::int32_t>(i);
-    const IVec<D> cell = grid_.coords_of(kin_[i].x);
-    set_cell(id, cell);
-    cell_insert(id, grid_.index(cell));
+  if constexpr (kRests) {
+    if (init.velocity.empty()) {
+      // A kick: the particles wait in the resting store, which takes the initial positions
+      // over, and the kicked one becomes the first record.
+      const std::int32_t kicked = init.kicked;
+      const Vec<D> kick = init.kick_velocity;
+      rest_ = RestingStore<D>(std::move(init.position), grid_);
+      init = InitialState<D>{};
+      rests_ = true;
+      std::int32_t r = 0;
+      while (rest_.tag(r) != kicked) ++r;
+      const std::int32_t i = promote(r);
+      kin_[i].v = kick;
+      mark_moving(i);
+      predict(i);
+      return;
+    }
   }
+  // Every particle a record: 1D, whose sticky clusters rely on the order along the line, and
+  // thermal starts, where all move.
+  for (std::int32_t t : cell_order(init.position))
+    add_record(init.position[t], init.velocity_of(t), t, grid_.coords_of(init.position[t]));
+  init = InitialState<D>{};
   if (config_.sticky()) {
     for (std::size_t i = 1; i < n; ++i) GS_CHECK(kin_[i].x[0] >= kin_[i - 1].x[0]);
     cluster_lo_.resize(n);
@@ -63,7 +65,10 @@ Engine<D>::Engine(const PhysicsConfig& c)
   GS_CHECK(D > 1 && c.unbounded() && c.initial == Initial::Kick);
   GS_CHECK(grid_.side() == kUnboundedCellSide && grid_.per_side() <= INT16_MAX);
   reserve_particles(static_cast<std::size_t>(c.particles));
+  head_offset_ = 2;
   head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
+  rest_ = RestingStore<D>(grid_.cell_count(), static_cast<std::size_t>(c.particles));
+  rests_ = true;
   medium_ = std::make_unique<UnboundedMedium<D>>(
       MediumOptions{D, c.density, grid_.side(), c.seed, c.realisation});
   kick_nearest_centre();
@@ -92,16 +97,17 @@ void Engine<D>::kick_nearest_centre() {
       }
       if (k == D) break;
     }
-    for (std::int32_t i = 0; i < size(); ++i) {
-      const double d = (kin_[i].x - Vec<D>::Constant(centre)).norm();
-      if (d < best) best = d, kicked = i;  // ties: the first made
+    for (std::int32_t r = 0; r < rest_.slots(); ++r) {
+      const double d = (rest_.position(r) - Vec<D>::Constant(centre)).norm();
+      if (d < best) best = d, kicked = r;  // ties: the first made
     }
     if (kicked >= 0 && best <= ring * grid_.side()) break;
   }
   Rng kick_rng(config_.seed, config_.realisation, Stream::Kick);
-  kin_[kicked].v = config_.speed * random_direction<D>(kick_rng);
-  mark_moving(kicked);
-  predict(kicked);
+  const std::int32_t i = promote(kicked);
+  kin_[i].v = config_.speed * random_direction<D>(kick_rng);
+  mark_moving(i);
+  predict(i);
 }
 
 // Room for n particles in every per-particle array, so that the unbounded medium's new particles
@@ -118,6 +124,40 @@ void Engine<D>::reserve_particles(std::size_t n) {
   pred_.reserve(n);
   first_collision_.reserve(n);
   moved_.reserve(n);
+}
+
+template <int D>
+std::int32_t Engine<D>::add_record(const Vec<D>& x, const Vec<D>& v, std::int32_t tag,
+                                   const IVec<D>& cell) {
+  // Within the reserved capacity: nothing moves.
+  GS_CHECK(kin_.size() < capacity_);
+  const auto i = static_cast<std::int32_t>(kin_.size());
+  kin_.push_back({x, 0.0, v, 0});
+  tag_.push_back(tag);
+  image_.push_back(IVec<D>::Zero());
+  next_.push_back(-1);
+  prev_.push_back(-1);
+  pred_.push_back(Prediction{});
+  first_collision_.push_back(-1.0);
+  queue_.grow(kin_.size());
+  set_cell(i, cell);
+  cell_insert(i, grid_.index(cell));
+  return i;
+}
+
+// A resting particle gets its record as it was (at rest since t = 0), in the cell whose run held
+// it; its slot keeps the record's index for predictions made while it rested.
+template <int D>
+std::int32_t Engine<D>::promote(std::int32_t r) {
+  if constexpr (kRests) {
+    const IVec<D> cell = rest_.cell_of(r, grid_);
+    const std::int32_t i = add_record(rest_.position(r), Vec<D>::Zero(), rest_.tag(r), cell);
+    rest_.leave(r, grid_.index(cell), i);
+    return i;
+  } else {
+    GS_CHECK_MSG(false, "1D keeps no resting store");
+    return r;
+  }
 }
 
 template <int D>
@@ -139,7 +179,7 @@ void Engine<D>::make_cell(std::int32_t cell) {
   }
   fresh_.clear();
   medium_->particles(key, fresh_);
-  if (kin_.size() + fresh_.size() > capacity_)
+  if (static_cast<std::size_t>(rest_.slots()) + fresh_.size() > capacity_)
     throw UserError("--particles " + std::to_string(config_.particles) +
                     ": the unbounded medium has made as many particles as it may by t = " +
                     format_double(now_) + "; raise --particles or lower --t-max");
@@ -148,21 +188,9 @@ void Engine<D>::make_cell(std::int32_t cell) {
   head_[cell] = kEmptyCell;
   made_.push_back(cell);
   const Vec<D> shift = Vec<D>::Constant(middle * grid_.side());
-  for (const Vec<D>& x : fresh_) {
-    // Within the reserved capacity (checked above): nothing moves.
-    const auto i = static_cast<std::int32_t>(kin_.size());
-    kin_.push_back({x + shift, 0.0, Vec<D>::Zero(), 0});
-    tag_.push_back(i);
-    image_.push_back(IVec<D>::Zero());
-    next_.push_back(-1);
-    prev_.push_back(-1);
-    pred_.push_back(Prediction{});
-    first_collision_.push_back(-1.0);
-    queue_.grow(kin_.size());
-    // Its medium cell, whatever round-off the shift made: the engine tolerates a hair outside.
-    set_cell(i, c);
-    cell_insert(i, cell);
-  }
+  // Its medium cell, whatever round-off the shift makes: the engine tolerates a hair outside.
+  for (Vec<D>& x : fresh_) x += shift;
+  if constexpr (kRests) rest_.append_cell(cell, fresh_);
 }
 
 template <int D>
@@ -171,7 +199,7 @@ void Engine<D>::take_memory(std::size_t n) {
   if (memory_.take(static_cast<std::int64_t>(n) * each)) return;
   const MemoryBudget& all = MemoryBudget::process();
   throw UserError("--t-max " + format_double(config_.t_max) + ": the unbounded medium's " +
-                  std::to_string(kin_.size() + n) + " particles (about " + std::to_string(each) +
+                  std::to_string(static_cast<std::size_t>(rest_.slots()) + n) + " particles (about " + std::to_string(each) +
                   " B each) would not fit in this machine's " +
                   format_double(std::round(static_cast<double>(all.capacity()) / 1e8) / 10) +
                   " GB of memory" +
@@ -181,8 +209,7 @@ void Engine<D>::take_memory(std::size_t n) {
 
 namespace {
 
-// A box's cell heads in a checkpoint: the first particle of each cell or -1, as before heads
-// were offset (checkpoints of box runs keep their format).
+// A box's cell heads in a checkpoint: the first record of each cell or -1.
 void save_heads(StateWriter& out, const ZeroPages<std::int32_t>& head, std::int32_t offset) {
   out.value(static_cast<std::uint64_t>(head.size()));
   std::int32_t chunk[4096];
@@ -220,7 +247,7 @@ void Engine<D>::save(StateWriter& out) const {
     out.vector(made_);
     out.vector(heads);
   } else {
-    save_heads(out, head_, kHeadOffset);
+    save_heads(out, head_, head_offset_);
   }
   out.vector(next_);
   out.vector(prev_);
@@ -230,14 +257,14 @@ void Engine<D>::save(StateWriter& out) const {
   out.vector(moved_);
   out.vector(cluster_lo_);
   out.vector(cluster_hi_);
+  out.value(rests_);
+  if constexpr (kRests)
+    if (rests_) rest_.save(out, made_);
 }
 
 template <int D>
 Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
-    : config_(c),
-      grid_(c.box()),
-      queue_(c.unbounded() ? 0 : static_cast<std::size_t>(c.particles),
-             static_cast<std::size_t>(c.particles)) {
+    : config_(c), grid_(c.box()), queue_(0, static_cast<std::size_t>(c.particles)) {
   if (in.string() != to_toml(c))
     throw UserError("the checkpoint is of a run with other physics than its run.toml");
   const auto cap = static_cast<std::size_t>(c.particles);
@@ -246,12 +273,12 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   in.value(stats_);
   in.vector(kin_);
   in.expect(kin_.size() <= cap);
-  const std::size_t n = c.unbounded() ? kin_.size() : cap;
-  if (c.unbounded()) take_memory(n);
+  const std::size_t m = kin_.size();
   in.vector(tag_);
   in.vector(image_);
   if (c.unbounded()) {
     GS_CHECK(D > 1);
+    head_offset_ = 2;
     head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
     medium_ = std::make_unique<UnboundedMedium<D>>(
         MediumOptions{D, c.density, grid_.side(), c.seed, c.realisation});
@@ -261,12 +288,12 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
     in.expect(heads.size() == made_.size());
     for (std::size_t k = 0; k < made_.size(); ++k) {
       in.expect(made_[k] >= 0 && static_cast<std::size_t>(made_[k]) < head_.size() &&
-                heads[k] >= kEmptyCell && heads[k] < static_cast<std::int64_t>(n) + kHeadOffset);
+                heads[k] >= kEmptyCell && heads[k] < static_cast<std::int64_t>(m) + head_offset_);
       head_[made_[k]] = heads[k];
     }
   } else {
     head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
-    load_heads(in, head_, kHeadOffset);
+    load_heads(in, head_, head_offset_);
   }
   in.vector(next_);
   in.vector(prev_);
@@ -276,9 +303,22 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   in.vector(moved_);
   in.vector(cluster_lo_);
   in.vector(cluster_hi_);
-  in.expect(kin_.size() == n && tag_.size() == n && image_.size() == n && next_.size() == n &&
-            prev_.size() == n && pred_.size() == n && first_collision_.size() == n &&
-            moved_.size() <= n && queue_.particles() == n);
+  in.value(rests_);
+  if constexpr (kRests) {
+    if (rests_) {
+      rest_ = c.unbounded() ? RestingStore<D>(grid_.cell_count(), cap) : RestingStore<D>(grid_);
+      rest_.load(in, made_);
+    }
+  }
+  in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && prev_.size() == m &&
+            pred_.size() == m && first_collision_.size() == m && moved_.size() <= m &&
+            queue_.particles() == m);
+  if (c.unbounded()) {
+    in.expect(static_cast<std::size_t>(rest_.slots()) <= cap);
+    take_memory(static_cast<std::size_t>(rest_.slots()));
+  } else {
+    in.expect(static_cast<std::size_t>(size()) == cap);
+  }
 }
 
 namespace {
@@ -296,32 +336,33 @@ std::uint64_t morton(const IVec<D>& c) {
 
 }  // namespace
 
-// Stores the particles in Morton order of their cells, so that the neighbours a search visits
-// share cache lines and pages (for 1e5 spheres this halves the cost of a collision). In 1D the
-// initial order already runs along the line, and sticky clusters rely on it. tag_ remembers the
-// original numbering for snapshots.
+// The records in Morton order of their cells, so that the neighbours a search visits share cache
+// lines and pages (for 1e5 spheres this halves the cost of a collision). In 1D the initial order
+// already runs along the line, and sticky clusters rely on it. tag_ remembers the original
+// numbering for snapshots.
 template <int D>
-void Engine<D>::sort_by_cell(const InitialState<D>& init) {
-  const std::size_t n = init.position.size();
-  tag_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) tag_[i] = static_cast<std::int32_t>(i);
+std::vector<std::int32_t> Engine<D>::cell_order(const VecArray<D>& position) const {
+  const std::size_t n = position.size();
+  std::vector<std::int32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::int32_t>(i);
   if constexpr (D > 1) {
     // Sorting (key, index) pairs keeps ties in index order and reads memory in sequence.
-    std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
+    std::vector<std::pair<std::uint64_t, std::int32_t>> keyed(n);
     for (std::size_t i = 0; i < n; ++i)
-      order[i] = {morton<D>(grid_.coords_of(init.position[i])), static_cast<std::int32_t>(i)};
-    std::sort(order.begin(), order.end());
-    for (std::size_t i = 0; i < n; ++i) tag_[i] = order[i].second;
+      keyed[i] = {morton<D>(grid_.coords_of(position[i])), static_cast<std::int32_t>(i)};
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
   }
+  return order;
 }
 
 template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
-  const std::int32_t first = head_[cell] - kHeadOffset;  // -1: the cell is empty
+  const std::int32_t first = head_[cell] - head_offset_;  // -1: the cell is empty
   next_[i] = first;
   prev_[i] = -1;
   if (first >= 0) prev_[first] = i;
-  head_[cell] = i + kHeadOffset;
+  head_[cell] = i + head_offset_;
 }
 
 template <int D>
@@ -330,7 +371,7 @@ void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
   if (prev_[i] >= 0)
     next_[prev_[i]] = next;
   else
-    head_[cell] = next + kHeadOffset;
+    head_[cell] = next + head_offset_;
   if (next >= 0) prev_[next] = prev_[i];
 }
 
@@ -378,15 +419,22 @@ template <int D>
 template <bool kMakes, class ForEachCell>
 void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
   std::int32_t first[27];
-  int cells = 0;
+  typename RestingStore<D>::Run runs[27];
+  int cells = 0, resting_cells = 0;
   for_each_cell([&](std::int32_t cell) {
     // A cell that comes into a moving particle's reach is made first.
     if constexpr (kMakes)
       if (head_[cell] == kUnmadeCell) [[unlikely]]
         make_cell(cell);
-    const std::int32_t h = head_[cell] - kHeadOffset;
+    const std::int32_t h = head_[cell] - head_offset_;
     first[cells] = h;
     cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
+    if constexpr (kRests) {
+      if (rests_) {
+        runs[resting_cells] = rest_.run(cell);
+        resting_cells += runs[resting_cells].begin < runs[resting_cells].end;
+      }
+    }
   });
   int count = 0;
   for (int c = 0; c < cells; ++c)
@@ -397,6 +445,16 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
       nb.who[count++] = j;
     }
   nb.count = count;
+  // A cell's resting particles are one run of memory: their lines are requested as listed.
+  int rest = 0;
+  for (int c = 0; c < resting_cells; ++c) {
+    if constexpr (kRests) __builtin_prefetch(rest_.positions() + runs[c].begin);
+    for (std::int32_t r = runs[c].begin; r < runs[c].end; ++r) {
+      GS_CHECK(count + rest < Neighbours::kMax);
+      nb.rest[rest++] = r;
+    }
+  }
+  nb.rest_count = rest;
 }
 
 template <int D>
@@ -454,7 +512,67 @@ void Engine<D>::search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb) {
       }
     }
   }
+  if constexpr (kRests)
+    if (nb.rest_count > 0) search_resting(i, xi, nb, best);
   pred_[i].coll_time = best;
+}
+
+// The same search over resting particles: their positions as they were at t = 0, their velocity
+// zero (the arithmetic is the records' with v = 0, to the bit). A dead slot's NaN fails the test.
+template <int D>
+void Engine<D>::search_resting(std::int32_t i, const Vec<D>& xi, const Neighbours& nb,
+                               double& best) {
+  if constexpr (kRests) {
+    constexpr int kBatch = 64;
+    alignas(64) double dr[D][kBatch], bb[kBatch], rr[kBatch], disc[kBatch];
+    int hit[kBatch];
+    double dv[D], a = 0;
+    for (int k = 0; k < D; ++k) {
+      dv[k] = 0.0 - kin_[i].v[k];
+      a += dv[k] * dv[k];
+    }
+    const Vec<D>* x = rest_.positions();
+    for (int start = 0; start < nb.rest_count; start += kBatch) {
+      const std::int32_t* who = nb.rest + start;
+      const int count = std::min(kBatch, nb.rest_count - start);
+      for (int m = 0; m < count; ++m)
+        for (int k = 0; k < D; ++k) dr[k][m] = grid_.minimum_image(x[who[m]][k] - xi[k]);
+      for (int m = 0; m < count; ++m) {
+        double b = 0, r2 = 0;
+        for (int k = 0; k < D; ++k) {
+          b += dr[k][m] * dv[k];
+          r2 += dr[k][m] * dr[k][m];
+        }
+        bb[m] = b;
+        rr[m] = r2;
+        disc[m] = contact_discriminant(b, r2, a);
+      }
+      int hits = 0;
+      for (int m = 0; m < count; ++m) {
+        hit[hits] = m;
+        hits += will_touch(bb[m], disc[m]);
+      }
+      for (int h = 0; h < hits; ++h) {
+        const int m = hit[h];
+        const double t = now_ + contact_delay(bb[m], rr[m], disc[m]);
+        if (t < best) {
+          best = t;
+          pred_[i].partner = resting_partner(who[m]);
+          pred_[i].partner_counter = 0;  // a record made from a slot starts at 0
+        }
+      }
+    }
+  }
+}
+
+template <int D>
+bool Engine<D>::partner_changed(std::int32_t i) const {
+  const std::int32_t p = pred_[i].partner;
+  if (p >= 0) return kin_[p].counter != pred_[i].partner_counter;
+  if constexpr (kRests)
+    if (p < -1 && rest_.dead(-2 - p))
+      return kin_[rest_.moved_to(-2 - p)].counter != pred_[i].partner_counter;
+  return false;
 }
 
 template <int D>
@@ -542,7 +660,13 @@ EventKind Engine<D>::process_next() {
     cross_cell(i);
     return EventKind::Crossing;
   }
-  const std::int32_t j = pred_[i].partner;
+  std::int32_t j = pred_[i].partner;
+  if constexpr (kRests) {
+    if (j < -1) {  // at rest when predicted: its record, made now if it is still at rest
+      const std::int32_t r = -2 - j;
+      j = rest_.dead(r) ? rest_.moved_to(r) : promote(r);
+    }
+  }
   // The partner's records are needed only after i's search, but are requested now.
   __builtin_prefetch(&pred_[j]);
   queue_.prefetch(j);
@@ -650,8 +774,7 @@ void Engine<D>::cross_cell(std::int32_t i) {
   // after i's last search searched its own stencil, i included, and holds any collision with i
   // (or re-searches at its own earlier event). In a 3D kick 31% of crossings have no partner and
   // 19% a stale one.
-  const std::int32_t p = pred_[i].partner;
-  if (p >= 0 && kin_[p].counter != pred_[i].partner_counter) {
+  if (partner_changed(i)) {
     predict(i);
     return;
   }
@@ -723,7 +846,7 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
   s.info.step = stats_.collisions;
   // The unbounded medium's box is the addressable region, almost all of it never made.
   s.info.density =
-      medium_ ? config_.density : static_cast<double>(kin_.size()) / std::pow(grid_.box(), D);
+      medium_ ? config_.density : static_cast<double>(size()) / std::pow(grid_.box(), D);
   s.info.restitution = config_.restitution;
   s.info.cutoff = config_.cutoff;
   s.info.speed = config_.speed;
@@ -734,7 +857,7 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
 template <int D>
 void Engine<D>::snapshot(Snapshot& s) const {
   snapshot_info(s);
-  const std::size_t n = kin_.size();
+  const auto n = static_cast<std::size_t>(size());
   reserve_huge(s.position, n);
   reserve_huge(s.velocity, n);
   reserve_huge(s.radius, n);
@@ -744,15 +867,25 @@ void Engine<D>::snapshot(Snapshot& s) const {
   s.radius.assign(n, 0.5);
   s.active.resize(n);
   s.first_collision.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec<D> x = position(static_cast<std::int32_t>(i));
-    const std::size_t t = static_cast<std::size_t>(tag_[i]);
+  for (std::int32_t i = 0; i < moving(); ++i) {
+    const auto t = static_cast<std::size_t>(tag_[i]);
     s.position[t].setZero();
     s.velocity[t].setZero();
-    s.position[t].template head<D>() = x;
+    s.position[t].template head<D>() = position(i);
     s.velocity[t].template head<D>() = kin_[i].v;
     s.active[t] = kin_[i].active;
     s.first_collision[t] = first_collision_[i];
+  }
+  if constexpr (kRests) {
+    for (std::int32_t r = 0; r < rest_.slots(); ++r) {
+      if (rest_.dead(r)) continue;
+      const auto t = static_cast<std::size_t>(rest_.tag(r));
+      s.position[t].setZero();
+      s.velocity[t].setZero();
+      s.position[t].template head<D>() = rest_.position(r);
+      s.active[t] = 0;
+      s.first_collision[t] = -1.0;
+    }
   }
 }
 
@@ -781,14 +914,31 @@ void Engine<D>::active_snapshot(Snapshot& s) const {
 
 template <int D>
 double Engine<D>::max_overlap_now() const {
-  const auto n = static_cast<std::int32_t>(kin_.size());
   double deepest = 0;
-  for (std::int32_t i = 0; i < n; ++i) {
+  const auto overlap = [&](const Vec<D>& xi, const Vec<D>& xj) {
+    deepest = std::max(deepest, 1.0 - grid_.minimum_image(xj - xi).norm());
+  };
+  // Each pair once: records with later records and every resting particle, resting particles
+  // with later slots.
+  for (std::int32_t i = 0; i < moving(); ++i) {
     const Vec<D> xi = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);
     grid_.for_each_neighbour(cell_of(i), [&](std::int32_t cell) {
-      for (std::int32_t j = head_[cell] - kHeadOffset; j >= 0; j = next_[j])
+      for (std::int32_t j = head_[cell] - head_offset_; j >= 0; j = next_[j])
         if (j > i) deepest = std::max(deepest, 1.0 - separation(xi, j).norm());
+      if constexpr (kRests)
+        if (rests_)
+          for (auto run = rest_.run(cell); run.begin < run.end; ++run.begin)
+            overlap(xi, rest_.position(run.begin));
     });
+  }
+  if constexpr (kRests) {
+    for (std::int32_t r = 0; r < rest_.slots(); ++r) {
+      if (rest_.dead(r)) continue;
+      grid_.for_each_neighbour(rest_.cell_of(r, grid_), [&](std::int32_t cell) {
+        for (auto run = rest_.run(cell); run.begin < run.end; ++run.begin)
+          if (run.begin > r) overlap(rest_.position(r), rest_.position(run.begin));
+      });
+    }
   }
   return deepest;
 }

@@ -8,14 +8,17 @@
 // counter; if the partner has changed velocity since, the event is stale and the particle simply
 // predicts again. Positions are updated lazily (each particle keeps the time its position refers
 // to). A particle that has never moved is in no list but its cell's and costs nothing, so a kick
-// run costs what its active particles cost, not what N costs.
+// run costs what its active particles cost, not what N costs. In a kick (2D, 3D) such particles
+// are not even engine records: they wait in a RestingStore (sim/resting_store.h), a position
+// each, and become records (Engine::promote) when something first collides with them.
 //
 // In the unbounded medium (--medium unbounded) the box is a grid far larger than a front ever
 // gets, whose cells are made only when a moving particle's stencil first reaches them: their
-// particles come from UnboundedMedium (sim/unbounded_medium.h) and are appended at rest, so a run
-// holds the particles near the front and pays nothing for the rest. The per-particle arrays are
-// reserved up front for the most particles the run may make (--particles) and grown into, so the
-// hot loop never reallocates; the cell heads are zero pages until their cell is made.
+// particles come from UnboundedMedium (sim/unbounded_medium.h) and are appended to the resting
+// store, so a run holds the particles near the front and pays nothing for the rest. The
+// per-particle arrays are reserved up front for the most particles the run may make (--particles)
+// and grown into, so the hot loop never reallocates; the cell heads are zero pages until their
+// cell is made.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -29,6 +32,7 @@
 #include "sim/huge_pages.h"
 #include "sim/initial.h"
 #include "sim/memory_budget.h"
+#include "sim/resting_store.h"
 #include "sim/snapshot.h"
 #include "sim/state_stream.h"
 #include "sim/unbounded_medium.h"
@@ -129,23 +133,24 @@ class Engine final : public Simulation {
   double max_overlap_now() const override;
   void save(StateWriter& out) const override;
 
-  // Per-particle state at the current time (unwrapped position).
-  Vec<D> position(std::int32_t i) const;
-  const Vec<D>& velocity(std::int32_t i) const { return kin_[i].v; }
-  std::int32_t size() const { return static_cast<std::int32_t>(kin_.size()); }
+  // The particles held: the moving records and those still at rest.
+  std::int32_t size() const { return moving() + static_cast<std::int32_t>(rest_.resting()); }
 
  private:
   EventKind process_next();
   void advance(std::int32_t i);
+  Vec<D> position(std::int32_t i) const;  // a record's, now, unwrapped
+  std::int32_t moving() const { return static_cast<std::int32_t>(kin_.size()); }
   Vec<D> separation(const Vec<D>& xi, std::int32_t j) const;
-  // The particles a search will test, other than the searching one. A stencil is at most 4.5
-  // diameters wide (cells are under 1.5 wide when there are two or more per side, and a lone
-  // cell is under 2 wide), so its spheres lie in a cube of side 5.5 and cannot number more than
-  // 5.5^3 / (pi / 6) < 320.
+  // The particles a search will test, other than the searching one: records (who) and slots
+  // of the resting store (rest). A stencil is at most 4.5 diameters wide (cells are under 1.5
+  // wide when there are two or more per side, and a lone cell is under 2 wide), so its spheres
+  // lie in a cube of side 5.5 and cannot number more than 5.5^3 / (pi / 6) < 320.
   struct Neighbours {
     static constexpr int kMax = 320;
-    int count = 0;
+    int count = 0, rest_count = 0;
     std::int32_t who[kMax];
+    std::int32_t rest[kMax];
   };
   // kMakes: the unbounded medium, whose cells are made as they come into reach (a box's all
   // exist; the two are apart so that a box pays nothing for the test).
@@ -160,6 +165,13 @@ class Engine final : public Simulation {
   }
   void gather_stencil(std::int32_t i, Neighbours& nb);
   void search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb);
+  void search_resting(std::int32_t i, const Vec<D>& xi, const Neighbours& nb, double& best);
+  // A prediction's partner: a record (>= 0), none (-1), or resting slot r as -2 - r.
+  static std::int32_t resting_partner(std::int32_t r) { return -2 - r; }
+  // Whether i's predicted partner has changed course since the prediction.
+  bool partner_changed(std::int32_t i) const;
+  // The record of a resting slot's particle, made now if it has none.
+  std::int32_t promote(std::int32_t r);
   void predict(std::int32_t i);
   void predict_from(std::int32_t i, const Neighbours& nb);
   void predict_crossing(std::int32_t i, const Vec<D>& xi);
@@ -167,13 +179,16 @@ class Engine final : public Simulation {
   void collide_pair(std::int32_t i, std::int32_t j);
   void collide_sticky(std::int32_t i, std::int32_t j);
   void cross_cell(std::int32_t i);
-  void sort_by_cell(const InitialState<D>& init);  // tag_: the particles in cell (Morton) order
+  // The particles' indices in Morton order of their cells (the records' order, tag_).
+  std::vector<std::int32_t> cell_order(const VecArray<D>& position) const;
   void mark_moving(std::int32_t i);
   void mark_active(std::int32_t i);
   void snapshot_info(Snapshot& s) const;  // the header every snapshot shares
   void cell_insert(std::int32_t i, std::int32_t cell);
   void cell_remove(std::int32_t i, std::int32_t cell);
   void reserve_particles(std::size_t n);
+  // A new record at rest since t = 0 or moving from it, in its cell: its index.
+  std::int32_t add_record(const Vec<D>& x, const Vec<D>& v, std::int32_t tag, const IVec<D>& cell);
   [[gnu::cold]] void make_cell(std::int32_t cell);  // the unbounded medium: appends its particles
   // Takes the memory of `n` more made particles from the process's budget, or ends the run.
   void take_memory(std::size_t n);
@@ -201,11 +216,13 @@ class Engine final : public Simulation {
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
   std::vector<IVec<D>> image_;
 
-  // Cells as doubly linked lists, apart from the particle data: a search walks them without
-  // waiting for each particle's cache line. A cell's head holds its first particle plus
-  // kHeadOffset: 1 is an empty cell and 0 (an untouched zero page) a cell of the unbounded
-  // medium not made yet, which a search reads as empty.
-  static constexpr std::int32_t kHeadOffset = 2, kEmptyCell = 1, kUnmadeCell = 0;
+  // The records of each cell as doubly linked lists, apart from the particle data: a search walks
+  // them without waiting for each particle's cache line. A cell's head holds its first record
+  // plus head_offset_, so that an untouched zero page is an empty cell: in a box the offset is 1,
+  // in the unbounded medium 2, where 1 is an empty cell and 0 a cell not made yet, which a search
+  // reads as empty.
+  static constexpr std::int32_t kEmptyCell = 1, kUnmadeCell = 0;
+  std::int32_t head_offset_ = 1;
   ZeroPages<std::int32_t> head_;
   HugeVector<std::int32_t> next_, prev_;
 
@@ -237,6 +254,13 @@ class Engine final : public Simulation {
 
   std::vector<double> first_collision_;
   std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
+
+  // The particles of a kick that have never been hit: in 2D and 3D kicks (rests_), none in 1D,
+  // whose sticky clusters keep every particle a record in order along the line, nor in thermal
+  // starts, where all move.
+  static constexpr bool kRests = D > 1;
+  bool rests_ = false;
+  RestingStore<D> rest_;
 
   // The unbounded medium (none in a box): its generator, the cells made so far in the order they
   // were made (what a checkpoint keeps of the grid), a cell's new particles, and the most

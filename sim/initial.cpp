@@ -15,14 +15,14 @@ namespace gs {
 template <int D>
 VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
   const CellGrid<D> grid(box);
-  // A placed sphere: its centre and the next sphere of its cell, in one cache line.
-  struct Placed {
-    Vec<D> x;
-    std::int32_t next;
-  };
+  // The placed spheres' centres, which become the result, and each one's next sphere of its
+  // cell: the peak of a start is these and the heads (44 B a sphere in 3D at n = 0.25, where a
+  // record of both would pad to 32 and a copy for the result add 24).
   HugeVector<std::int32_t> head(grid.cell_count(), -1);
-  HugeVector<Placed> placed;
-  placed.reserve(static_cast<std::size_t>(n));
+  VecArray<D> x;
+  HugeVector<std::int32_t> next;
+  x.reserve(static_cast<std::size_t>(n));
+  next.reserve(static_cast<std::size_t>(n));
   // A trial costs two dependent cache misses (its cells' heads, then their occupants).
   // Trials are drawn kAhead steps before they are tested, in the same order, so the heads of a
   // trial are prefetched kAhead steps early and its occupants kAhead / 2 steps early: the misses
@@ -45,40 +45,49 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
   for (auto& t : ring) draw(t);
   // Near the jamming limit the acceptance rate collapses; give up long before that becomes a hang.
   const std::int64_t max_trials = 1000 * n + 1000000;
-  for (std::int64_t trial = 0; static_cast<std::int64_t>(placed.size()) < n; ++trial) {
+  for (std::int64_t trial = 0; static_cast<std::int64_t>(x.size()) < n; ++trial) {
     if (trial >= max_trials)
       throw UserError("--density: random sequential addition could not place particle " +
-                      std::to_string(placed.size() + 1) + " of " + std::to_string(n) +
+                      std::to_string(x.size() + 1) + " of " + std::to_string(n) +
                       "; the box is too full");
     const Trial& soon = ring[(trial + kAhead / 2) % kAhead];
     for (int k = 0; k < soon.cells; ++k)
-      if (const std::int32_t h = head[soon.cell[k]]; h >= 0) __builtin_prefetch(&placed[h]);
+      if (const std::int32_t h = head[soon.cell[k]]; h >= 0) {
+        __builtin_prefetch(&x[h]);
+        __builtin_prefetch(&next[h]);
+      }
     Trial& t = ring[trial % kAhead];
-    const Vec<D> x = t.x;
     bool free = true;
     for (int k = 0; k < t.cells && free; ++k)
-      for (std::int32_t j = head[t.cell[k]]; free && j >= 0; j = placed[j].next)
-        if (grid.minimum_image(placed[j].x - x).squaredNorm() < 1.0) free = false;
+      for (std::int32_t j = head[t.cell[k]]; free && j >= 0; j = next[j])
+        if (grid.minimum_image(x[j] - t.x).squaredNorm() < 1.0) free = false;
     if (free) {
-      const std::int32_t cell = grid.index(grid.coords_of(x));
-      placed.push_back({x, head[cell]});
-      head[cell] = static_cast<std::int32_t>(placed.size() - 1);
+      const std::int32_t cell = grid.index(grid.coords_of(t.x));
+      x.push_back(t.x);
+      next.push_back(head[cell]);
+      head[cell] = static_cast<std::int32_t>(x.size() - 1);
     }
     draw(t);  // the trial kAhead steps on takes this slot
   }
-  // Returned cell by cell, so that particles close in space are close in the array: the engine's
-  // Morton ordering then moves each one only a little, and its snapshots, written in this order,
-  // fill memory nearly in sequence instead of at random. The spheres themselves were stored in
-  // random order, so each is a cache miss: they are fetched a few cells ahead.
-  VecArray<D> pos;
-  pos.reserve(placed.size());
-  constexpr std::size_t kCellsAhead = 32;
-  for (std::size_t c = 0; c < head.size(); ++c) {
-    if (c + kCellsAhead < head.size())
-      if (const std::int32_t h = head[c + kCellsAhead]; h >= 0) __builtin_prefetch(&placed[h]);
-    for (std::int32_t j = head[c]; j >= 0; j = placed[j].next) pos.push_back(placed[j].x);
-  }
-  return pos;
+  // Returned cell by cell (each cell's list from its head), so that particles close in space
+  // are close in the array and a box's resting store (sim/resting_store.h) sorts them with
+  // little movement. Each sphere's place in that order replaces its link, and the centres are
+  // permuted in place, cycle by cycle.
+  std::int32_t place = 0;
+  for (std::size_t c = 0; c < head.size(); ++c)
+    for (std::int32_t j = head[c]; j >= 0;) {
+      const std::int32_t after = next[j];
+      next[j] = place++;
+      j = after;
+    }
+  head = HugeVector<std::int32_t>();  // freed, not cleared
+  for (std::size_t j = 0; j < x.size(); ++j)
+    while (next[j] != static_cast<std::int32_t>(j)) {
+      const auto to = static_cast<std::size_t>(next[j]);
+      std::swap(x[j], x[to]);
+      std::swap(next[j], next[to]);
+    }
+  return x;
 }
 
 template <int D>
@@ -174,7 +183,8 @@ void centre_on(InitialState<D>& s, double box) {
                          [](const Vec<1>& a, const Vec<1>& b) { return a[0] < b[0]; });
     const auto rotate_by = first - s.position.begin();
     std::rotate(s.position.begin(), first, s.position.end());
-    std::rotate(s.velocity.begin(), s.velocity.begin() + rotate_by, s.velocity.end());
+    if (!s.velocity.empty())
+      std::rotate(s.velocity.begin(), s.velocity.begin() + rotate_by, s.velocity.end());
     const auto n = static_cast<std::int32_t>(s.position.size());
     s.kicked = static_cast<std::int32_t>((s.kicked - rotate_by + n) % n);
   }
@@ -209,7 +219,6 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
     Rng vel_rng(c.seed, c.realisation, Stream::Velocities);
     s.velocity = thermal_velocities<D>(c.particles, c.temperature, vel_rng);
   } else {
-    s.velocity.assign(n, Vec<D>::Zero());
     Rng kick_rng(c.seed, c.realisation, Stream::Kick);
     if (c.kick_site == KickSite::Centre) {
       const Vec<D> centre = Vec<D>::Constant(0.5 * box);
@@ -221,7 +230,7 @@ InitialState<D> make_initial_state(const PhysicsConfig& c) {
     } else {
       s.kicked = static_cast<std::int32_t>(kick_rng.below(n));
     }
-    s.velocity[s.kicked] = c.speed * random_direction<D>(kick_rng);
+    s.kick_velocity = c.speed * random_direction<D>(kick_rng);
     centre_on(s, box);
   }
   return s;

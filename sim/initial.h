@@ -12,8 +12,16 @@ namespace gs {
 template <int D>
 struct InitialState {
   VecArray<D> position;  // in [0, L)^D; in 1D sorted along the line
+  // Empty for a kick, where every particle is at rest but `kicked` (a kick's zeros would cost
+  // the start of a 2e7-sphere box 480 MB).
   VecArray<D> velocity;
   std::int32_t kicked = -1;  // the kicked particle, or -1 for a thermal start
+  Vec<D> kick_velocity = Vec<D>::Zero();
+
+  Vec<D> velocity_of(std::size_t i) const {
+    if (!velocity.empty()) return velocity[i];
+    return static_cast<std::int32_t>(i) == kicked ? kick_velocity : Vec<D>::Zero();
+  }
 };
 
 // Random sequential addition of n unit-diameter spheres in a periodic box of side L: each new

@@ -1,0 +1,105 @@
+#pragma once
+// The particles of a kick that have never moved: a position each, kept cell by cell so that a
+// neighbour search reads a cell's resting particles as one run of memory (issue 31 part 2). A
+// resting sphere costs its position, its tag and its cell's share of the run table: about 36 B
+// in 3D at n = 0.25, where the engine's full record costs 160 (sim/bytes_per_particle_3d).
+//
+// A particle leaves the store when something first collides with it (Engine::promote) and its
+// slot is left dead: a NaN first coordinate, which makes every contact test with it false
+// without a branch (sim/collision.h will_touch), and in the second coordinate the particle's
+// index among the moving, so that a prediction made while it rested can still be checked.
+//
+// Two layouts of the run table. A box's particles all exist from the start, sorted by cell in
+// row-major order: a cell's run starts at its block's base (one per 64 cells) plus a 15-bit
+// offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4 cells
+// on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
+// medium appends each cell's particles as the cell is made: its runs are (start, length) words
+// in zero pages (sim/zero_pages.h), of which only the made cells' pages are ever touched.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "sim/cell_grid.h"
+#include "sim/state_stream.h"
+#include "sim/vec.h"
+#include "sim/zero_pages.h"
+
+namespace gs {
+
+// In 2D and 3D (a dead slot keeps the record's index in its second coordinate); the 1D engine
+// keeps every particle a record.
+template <int D>
+class RestingStore {
+ public:
+  struct Run {
+    std::int32_t begin = 0, end = 0;
+  };
+
+  RestingStore() = default;
+  // A box: the particles at `x` (their tags are their indices there), sorted here by cell; the
+  // order within a cell is the tags'.
+  RestingStore(VecArray<D>&& x, const CellGrid<D>& grid);
+  // The unbounded medium: no particle yet, room for `capacity` (address space until made).
+  RestingStore(std::size_t cells, std::size_t capacity);
+
+  // Appends the particles of a newly made cell of the unbounded medium (tags in making order).
+  void append_cell(std::int32_t cell, const VecArray<D>& x);
+
+  // The slots of a cell's particles, empty once they have all left; a dead slot within is
+  // possible. Cells of the unbounded medium not made yet are empty.
+  Run run(std::int32_t cell) const {
+    if (!box_) {
+      const std::uint64_t w = runs_[cell];
+      const auto begin = static_cast<std::int32_t>(w >> 8);
+      return {begin, begin + static_cast<std::int32_t>(w & 0xff)};
+    }
+    const std::uint16_t here = offset_[cell];
+    if (!(here & kLive)) return {};
+    const std::size_t next = static_cast<std::size_t>(cell) + 1;
+    return {static_cast<std::int32_t>(base_[cell / kBlock] + (here & ~kLive)),
+            static_cast<std::int32_t>(base_[next / kBlock] + (offset_[next] & ~kLive))};
+  }
+
+  const Vec<D>& position(std::int32_t r) const { return x_[r]; }
+  const Vec<D>* positions() const { return x_.data(); }
+  bool dead(std::int32_t r) const { return std::isnan(x_[r][0]); }
+  std::int32_t moved_to(std::int32_t r) const { return static_cast<std::int32_t>(x_[r][1]); }
+  std::int32_t tag(std::int32_t r) const { return box_ ? tag_[r] : r; }
+  std::int32_t slots() const { return static_cast<std::int32_t>(x_.size()); }
+  std::int64_t resting() const { return resting_; }
+
+  // The cell whose run holds slot r: the cell of its position, or (in the unbounded medium,
+  // where a made particle may lie a hair outside its cell) a neighbour of it.
+  IVec<D> cell_of(std::int32_t r, const CellGrid<D>& grid) const;
+  // Marks slot r (in `cell`) dead: its particle is now moving particle `moving`.
+  void leave(std::int32_t r, std::int32_t cell, std::int32_t moving);
+
+  // The unbounded medium's runs are those of `made`, the made cells (the engine keeps the list).
+  void save(StateWriter& out, const std::vector<std::int32_t>& made) const;
+  // Into a store constructed as the saved one was (a box's from its grid alone: see below).
+  void load(StateReader& in, const std::vector<std::int32_t>& made);
+  // An empty box store of `grid`, for load().
+  explicit RestingStore(const CellGrid<D>& grid);
+
+ private:
+  static constexpr std::size_t kBlock = 64;
+  static constexpr std::uint16_t kLive = 0x8000;  // the cell still holds a resting particle
+  bool in_run(std::int32_t r, std::int32_t cell) const {
+    const Run s = run(cell);
+    return s.begin <= r && r < s.end;
+  }
+
+  bool box_ = true;
+  VecArray<D> x_;
+  std::int64_t resting_ = 0;
+  // A box: each slot's tag; each cell's start as the base of its block of kBlock cells plus its
+  // offset (with kLive), for the cells and one past the last, whose start is the total.
+  std::vector<std::int32_t> tag_;
+  std::vector<std::uint32_t> base_;
+  ZeroPages<std::uint16_t> offset_;
+  // The unbounded medium: (start << 8 | length) of each made cell.
+  ZeroPages<std::uint64_t> runs_;
+};
+
+}  // namespace gs
