@@ -74,7 +74,7 @@ Footprint kick_footprint(const PhysicsConfig& c) {
     f.run_wall = wall_seconds() - wall0;
     f.after_run = resident_bytes();
     f.active = static_cast<double>(sim->sample().active);
-    f.made = static_cast<double>(sim->snapshot().size());
+    f.made = static_cast<double>(sim->particle_count());
     f.collisions = static_cast<double>(sim->stats().collisions);
     f.events = static_cast<double>(sim->stats().events);
     const bool sent = write(fd[1], &f, sizeof f) == static_cast<ssize_t>(sizeof f);

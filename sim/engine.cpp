@@ -418,8 +418,7 @@ inline Vec<D> Engine<D>::separation(const Vec<D>& xi, std::int32_t j) const {
 template <int D>
 template <bool kMakes, class ForEachCell>
 void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_cell) {
-  std::int32_t first[27];
-  typename RestingStore<D>::Run runs[27];
+  std::int32_t first[27], rest_begin[27], rest_end[27];  // not zeroed: a search's every cost counts
   int cells = 0, resting_cells = 0;
   for_each_cell([&](std::int32_t cell) {
     // A cell that comes into a moving particle's reach is made first.
@@ -431,8 +430,10 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
     cells += h >= 0;  // no branch: whether a cell is empty is a coin toss
     if constexpr (kRests) {
       if (rests_) {
-        runs[resting_cells] = rest_.run(cell);
-        resting_cells += runs[resting_cells].begin < runs[resting_cells].end;
+        const auto run = rest_.run(cell);
+        rest_begin[resting_cells] = run.begin;
+        rest_end[resting_cells] = run.end;
+        resting_cells += run.begin < run.end;
       }
     }
   });
@@ -448,8 +449,8 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
   // A cell's resting particles are one run of memory: their lines are requested as listed.
   int rest = 0;
   for (int c = 0; c < resting_cells; ++c) {
-    if constexpr (kRests) __builtin_prefetch(rest_.positions() + runs[c].begin);
-    for (std::int32_t r = runs[c].begin; r < runs[c].end; ++r) {
+    if constexpr (kRests) __builtin_prefetch(rest_.positions() + rest_begin[c]);
+    for (std::int32_t r = rest_begin[c]; r < rest_end[c]; ++r) {
       GS_CHECK(count + rest < Neighbours::kMax);
       nb.rest[rest++] = r;
     }

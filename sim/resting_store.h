@@ -54,11 +54,12 @@ class RestingStore {
       const auto begin = static_cast<std::int32_t>(w >> 8);
       return {begin, begin + static_cast<std::int32_t>(w & 0xff)};
     }
+    // Without a branch: whether a cell still holds a resting particle is a coin toss.
     const std::uint16_t here = offset_[cell];
-    if (!(here & kLive)) return {};
     const std::size_t next = static_cast<std::size_t>(cell) + 1;
-    return {static_cast<std::int32_t>(base_[cell / kBlock] + (here & ~kLive)),
-            static_cast<std::int32_t>(base_[next / kBlock] + (offset_[next] & ~kLive))};
+    const auto begin = static_cast<std::int32_t>(base_[cell / kBlock] + (here & ~kLive));
+    const auto end = static_cast<std::int32_t>(base_[next / kBlock] + (offset_[next] & ~kLive));
+    return {begin, (here & kLive) ? end : begin};
   }
 
   const Vec<D>& position(std::int32_t r) const { return x_[r]; }
