@@ -105,6 +105,7 @@ std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
   };
   return {{"bytes_per_resting_particle_peak", per_rest(&Footprint::peak), "B", "<= 40"},
           {"bytes_per_resting_particle_held", per_rest(&Footprint::constructed), "B", "<= 40"},
+          {"bytes_per_resting_particle_at_t_max", per_rest(&Footprint::after_run), "B", ""},
           {"bytes_per_moving_particle",
            per_rest(&Footprint::constructed) +
                (two.after_run - two.constructed) / std::max(1.0, two.active),

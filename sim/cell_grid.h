@@ -1,8 +1,15 @@
 #pragma once
 // The periodic cell grid: cubic cells at least one diameter wide, so that spheres that can touch
 // sit in the same or adjacent cells (a stencil of 3^d cells).
+//
+// Cells are numbered tile by tile, tiles of 4^d cells in row-major order and row-major within
+// (the grid padded to whole tiles): the cells of a ball share pages and lines. Numbered by rows,
+// every row through a blast would bring its whole length into memory, and a 3D box's cell
+// heads would cost a moving sphere 100 B (sim/bytes_per_particle_3d).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "sim/error.h"
 #include "sim/vec.h"
@@ -12,13 +19,27 @@ namespace gs {
 template <int D>
 class CellGrid {
  public:
-  explicit CellGrid(double box) : box_(box) {
+  // Cells at least `min_side` (at least a diameter) wide.
+  explicit CellGrid(double box, double min_side = 1.0) : box_(box) {
+    GS_CHECK(min_side >= 1.0);
     // The margin keeps cells wider than a diameter even for positions a round-off outside them.
-    per_side_ = static_cast<int>(std::floor(box / (1.0 + 1e-9)));
+    per_side_ = std::max(1, static_cast<int>(std::floor(box / (min_side * (1.0 + 1e-9)))));
     GS_CHECK(per_side_ >= 1);
     side_ = box / per_side_;
-    count_ = 1;
-    for (int k = 0; k < D; ++k) count_ *= static_cast<std::size_t>(per_side_);
+    const int tiles = (per_side_ + kTile - 1) / kTile;
+    std::int64_t count = 1, tile_cells = 1;
+    for (int k = 0; k < D; ++k) count *= tiles * kTile, tile_cells *= kTile;
+    GS_CHECK(count <= INT32_MAX);
+    count_ = static_cast<std::size_t>(count);
+    // A cell's number is the sum of what its coordinate along each axis contributes.
+    std::int64_t tile_stride = tile_cells, cell_stride = 1;
+    for (int k = 0; k < D; ++k) {
+      part_[k].resize(static_cast<std::size_t>(per_side_));
+      for (int c = 0; c < per_side_; ++c)
+        part_[k][c] = static_cast<std::int32_t>(c / kTile * tile_stride + c % kTile * cell_stride);
+      tile_stride *= tiles;
+      cell_stride *= kTile;
+    }
   }
 
   double box() const { return box_; }
@@ -37,8 +58,17 @@ class CellGrid {
 
   std::int32_t index(const IVec<D>& c) const {
     std::int32_t i = 0;
-    for (int k = D - 1; k >= 0; --k) i = i * per_side_ + c[k];
+    for (int k = 0; k < D; ++k) i += part_[k][c[k]];
     return i;
+  }
+  // The coordinates of cell number i.
+  IVec<D> coords(std::int32_t i) const {
+    const int tiles = (per_side_ + kTile - 1) / kTile;
+    std::int32_t tile = i, cell = i;
+    for (int k = 0; k < D; ++k) tile /= kTile;
+    IVec<D> c;
+    for (int k = 0; k < D; ++k, tile /= tiles, cell /= kTile) c[k] = tile % tiles * kTile + cell % kTile;
+    return c;
   }
 
   // Nearest periodic image of a separation that is less than 1.5 box sides long.
@@ -88,25 +118,29 @@ class CellGrid {
 
   template <class F>
   void visit(int (&list)[D][3], int (&len)[D], F& f) const {
-    const int n = per_side_;
+    const auto& x = part_[0];
     if constexpr (D == 1) {
-      for (int a = 0; a < len[0]; ++a) f(list[0][a]);
+      for (int a = 0; a < len[0]; ++a) f(x[list[0][a]]);
     } else if constexpr (D == 2) {
-      for (int b = 0; b < len[1]; ++b)
-        for (int a = 0; a < len[0]; ++a) f(list[1][b] * n + list[0][a]);
+      for (int b = 0; b < len[1]; ++b) {
+        const std::int32_t row = part_[1][list[1][b]];
+        for (int a = 0; a < len[0]; ++a) f(row + x[list[0][a]]);
+      }
     } else {
       for (int z = 0; z < len[2]; ++z)
         for (int b = 0; b < len[1]; ++b) {
-          const int row = (list[2][z] * n + list[1][b]) * n;
-          for (int a = 0; a < len[0]; ++a) f(row + list[0][a]);
+          const std::int32_t row = part_[2][list[2][z]] + part_[1][list[1][b]];
+          for (int a = 0; a < len[0]; ++a) f(row + x[list[0][a]]);
         }
     }
   }
 
+  static constexpr int kTile = 4;
   double box_;
   double side_;
   int per_side_;
   std::size_t count_;
+  std::vector<std::int32_t> part_[D];
 };
 
 }  // namespace gs

@@ -28,8 +28,9 @@ double PhysicsConfig::paper_time(double t) const {
 }
 
 int unbounded_cells_per_side(const PhysicsConfig& c) {
-  // 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1290^3 < 2^31 (1D: validate refuses).
-  const double most = c.dim == 3 ? 1290 : 32766;
+  // 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1288^3, whose whole tiles of 4^3
+  // (sim/cell_grid.h) number under 2^31 (1D: validate refuses).
+  const double most = c.dim == 3 ? 1288 : 32766;
   const double side = std::pow(static_cast<double>(c.particles) / c.density, 1.0 / c.dim);
   return 2 * static_cast<int>(std::clamp(std::ceil(2 * side / kUnboundedCellSide), 8.0, most / 2));
 }

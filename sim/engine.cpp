@@ -23,7 +23,7 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
   GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
   GS_CHECK(D == 1 || grid_.per_side() <= INT16_MAX);  // Prediction::cell; validate() tells users
   reserve_particles(n);
-  head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
+  head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
   if constexpr (kRests) {
     if (init.velocity.empty()) {
       // A kick: the particles wait in the resting store, which takes the initial positions
@@ -163,10 +163,9 @@ std::int32_t Engine<D>::promote(std::int32_t r) {
 template <int D>
 void Engine<D>::make_cell(std::int32_t cell) {
   const int side = grid_.per_side(), middle = side / 2;
-  IVec<D> c;
   typename UnboundedMedium<D>::Cell key;
-  for (int k = 0, rest = cell; k < D; ++k, rest /= side) {
-    c[k] = rest % side;
+  const IVec<D> c = grid_.coords(cell);
+  for (int k = 0; k < D; ++k) {
     key[k] = c[k] - middle;
     // The stencil of a particle in the outermost cells would wrap round the periodic grid.
     if (c[k] == 0 || c[k] == side - 1)
@@ -292,7 +291,7 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
       head_[made_[k]] = heads[k];
     }
   } else {
-    head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Dense);
+    head_ = ZeroPages<std::int32_t>(grid_.cell_count(), Touch::Sparse);
     load_heads(in, head_, head_offset_);
   }
   in.vector(next_);

@@ -51,8 +51,8 @@ using HugeVector = std::vector<T, HugePageAllocator<T>>;
 // whole 2 MiB pages MADV_HUGEPAGE before anything touches them. For arrays whose type callers
 // share (the Snapshot's), where the allocator cannot change: a 2e6-sphere snapshot fills 130 MB
 // of fresh memory, and its 32000 page faults of 4 KiB cost more than the copy (perf, in a VM).
-template <class T>
-void reserve_huge(std::vector<T>& v, std::size_t n) {
+template <class T, class A>
+void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   if (v.capacity() >= n) return;
   v.reserve(n);
   constexpr std::size_t kHuge = HugePageAllocator<T>::kHuge;

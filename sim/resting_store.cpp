@@ -6,66 +6,18 @@
 
 namespace gs {
 
-// Counting sort by cell, in place: the offsets count first and then serve as each cell's cursor,
-// the slots' tags are the sorted order, and the positions follow the tags cycle by cycle (a tag's
-// sign bit marks a slot done), so that nothing but the tags and the run table is added to the
-// positions: the peak of a start is what the store keeps.
 template <int D>
 RestingStore<D>::RestingStore(VecArray<D>&& x, const CellGrid<D>& grid)
     : box_(true), x_(std::move(x)), resting_(static_cast<std::int64_t>(x_.size())) {
-  const std::size_t n = x_.size(), cells = grid.cell_count();
-  GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
-  base_.assign(cells / kBlock + 1, 0);
-  offset_ = ZeroPages<std::uint16_t>(cells + 1, Touch::Dense);
-  const auto cell_at = [&](std::size_t j) {
-    return static_cast<std::size_t>(grid.index(grid.coords_of(x_[j])));
-  };
-  std::vector<std::uint32_t> block_count(base_.size(), 0);
-  for (std::size_t j = 0; j < n; ++j) {
-    const std::size_t c = cell_at(j);
-    ++offset_[c];
-    ++block_count[c / kBlock];
-  }
-  // Counts to offsets within each block; a block's particles fit in 15 bits by far (64 cells of
-  // side under 1.5 hold a few hundred unit spheres at close packing).
-  std::uint32_t total = 0;
-  for (std::size_t b = 0; b < base_.size(); ++b) {
-    base_[b] = total;
-    total += block_count[b];
-  }
-  block_count = {};
-  for (std::size_t c = 0; c <= cells; ++c) {
-    const std::uint32_t count = c < cells ? offset_[c] : 0;
-    const std::uint32_t start = c % kBlock == 0 ? 0 : offset_[c - 1];  // the cursor form: start
-    GS_CHECK(start + count < kLive);
-    offset_[c] = static_cast<std::uint16_t>(start + count);  // the cell's end for now
-  }
-  tag_.resize(n);
-  for (std::size_t j = n; j-- > 0;) {
-    const std::size_t c = cell_at(j);
-    offset_[c] = static_cast<std::uint16_t>(offset_[c] - 1);  // ends step back to starts
-    tag_[base_[c / kBlock] + offset_[c]] = static_cast<std::int32_t>(j);
-  }
-  // Every entry now holds its start, the one past the last cell the total's.
+  CellRuns t = sort_into_cells(
+      x_, grid.cell_count(), [&](const Vec<D>& p) { return grid.index(grid.coords_of(p)); },
+      false, tag_);
+  base_ = std::move(t.base);
+  offset_ = std::move(t.offset);
+  const std::size_t cells = grid.cell_count();
   for (std::size_t c = 0; c < cells; ++c)
     if (base_[c / kBlock] + offset_[c] < base_[(c + 1) / kBlock] + offset_[c + 1])
       offset_[c] |= kLive;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (tag_[k] < 0) continue;
-    const Vec<D> first = x_[k];
-    std::size_t at = k;
-    for (;;) {
-      const auto from = static_cast<std::size_t>(tag_[at]);
-      tag_[at] = ~tag_[at];
-      if (from == k) {
-        x_[at] = first;
-        break;
-      }
-      x_[at] = x_[from];
-      at = from;
-    }
-  }
-  for (auto& t : tag_) t = ~t;
 }
 
 template <int D>
@@ -166,5 +118,6 @@ void RestingStore<D>::load(StateReader& in, const std::vector<std::int32_t>& mad
 
 template class RestingStore<2>;
 template class RestingStore<3>;
+
 
 }  // namespace gs

@@ -10,7 +10,7 @@
 // index among the moving, so that a prediction made while it rested can still be checked.
 //
 // Two layouts of the run table. A box's particles all exist from the start, sorted by cell in
-// row-major order: a cell's run starts at its block's base (one per 64 cells) plus a 15-bit
+// cell order (sim/cell_grid.h): a cell's run starts at its block's base (one per 64 cells) plus a 15-bit
 // offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4 cells
 // on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
 // medium appends each cell's particles as the cell is made: its runs are (start, length) words
@@ -21,11 +21,86 @@
 #include <vector>
 
 #include "sim/cell_grid.h"
+#include "sim/error.h"
 #include "sim/state_stream.h"
 #include "sim/vec.h"
 #include "sim/zero_pages.h"
 
 namespace gs {
+
+// Where each cell's points lie once sorted by cell number: cell c's run starts at
+// base[c / kBlock] + offset[c] and ends where cell c + 1's starts (offset has one entry past the
+// last cell, whose start is the total).
+struct CellRuns {
+  static constexpr std::size_t kBlock = 64;
+  std::vector<std::uint32_t> base;
+  ZeroPages<std::uint16_t> offset;  // under 0x8000: the store keeps a flag in the 16th bit
+};
+
+// Sorts `x` in place by the number cell_of(point) in [0, cells) each point has; within a cell the
+// points keep their order, or reverse it if `latest_first`. order[k] is the former index of the
+// point now at k. Nothing but `order` (4 B a point, its storage reused) and the table (2 B a
+// cell) is added to the points: the start of a 2e7-sphere box peaks at what its resting store
+// keeps. A counting sort: the offsets count first and then serve as each cell's cursor, `order`
+// is filled from them, and the points follow `order` cycle by cycle (an entry's sign bit marks a
+// place done).
+template <int D, class CellOf>
+CellRuns sort_into_cells(VecArray<D>& x, std::size_t cells, CellOf&& cell_of, bool latest_first,
+                         std::vector<std::int32_t>& order) {
+  constexpr std::size_t kBlock = CellRuns::kBlock;
+  const std::size_t n = x.size();
+  GS_CHECK(n < static_cast<std::size_t>(INT32_MAX));
+  CellRuns t;
+  t.base.assign(cells / kBlock + 1, 0);
+  t.offset = ZeroPages<std::uint16_t>(cells + 1, Touch::Dense);
+  const auto cell_at = [&](std::size_t j) { return static_cast<std::size_t>(cell_of(x[j])); };
+  std::vector<std::uint32_t> block_count(t.base.size(), 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t c = cell_at(j);
+    ++t.offset[c];
+    ++block_count[c / kBlock];
+  }
+  std::uint32_t total = 0;
+  for (std::size_t b = 0; b < t.base.size(); ++b) {
+    t.base[b] = total;
+    total += block_count[b];
+  }
+  block_count = std::vector<std::uint32_t>();
+  // Counts to ends within each block. A block's points fit in 15 bits by far: 64 cells of side
+  // under 1.5 hold a few hundred unit spheres at close packing.
+  for (std::size_t c = 0; c <= cells; ++c) {
+    const std::uint32_t count = c < cells ? t.offset[c] : 0;
+    const std::uint32_t start = c % kBlock == 0 ? 0 : t.offset[c - 1];
+    GS_CHECK(start + count < 0x8000);
+    t.offset[c] = static_cast<std::uint16_t>(start + count);
+  }
+  // Ends step back to starts as the cells fill from their last place: the points taken first
+  // come last in their cell.
+  order.assign(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t j = latest_first ? k : n - 1 - k;
+    const std::size_t c = cell_at(j);
+    t.offset[c] = static_cast<std::uint16_t>(t.offset[c] - 1);
+    order[t.base[c / kBlock] + t.offset[c]] = static_cast<std::int32_t>(j);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (order[k] < 0) continue;
+    const Vec<D> first = x[k];
+    std::size_t at = k;
+    for (;;) {
+      const auto from = static_cast<std::size_t>(order[at]);
+      order[at] = ~order[at];
+      if (from == k) {
+        x[at] = first;
+        break;
+      }
+      x[at] = x[from];
+      at = from;
+    }
+  }
+  for (auto& j : order) j = ~j;
+  return t;
+}
 
 // In 2D and 3D (a dead slot keeps the record's index in its second coordinate); the 1D engine
 // keeps every particle a record.
@@ -84,7 +159,7 @@ class RestingStore {
   explicit RestingStore(const CellGrid<D>& grid);
 
  private:
-  static constexpr std::size_t kBlock = 64;
+  static constexpr std::size_t kBlock = CellRuns::kBlock;
   static constexpr std::uint16_t kLive = 0x8000;  // the cell still holds a resting particle
   bool in_run(std::int32_t r, std::int32_t cell) const {
     const Run s = run(cell);
