@@ -1,0 +1,231 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "sim/cell_grid.h"
+#include "sim/engine.h"
+#include "sim/initial.h"
+#include "sim/resting_store.h"
+#include "sim/rng.h"
+#include "sim/state_stream.h"
+
+namespace gs {
+namespace {
+
+template <int D>
+VecArray<D> random_points(int n, double box, std::uint64_t seed) {
+  Rng rng(seed, 0, Stream::Positions);
+  VecArray<D> x(static_cast<std::size_t>(n));
+  for (auto& p : x)
+    for (int k = 0; k < D; ++k) p[k] = rng.uniform() * box;
+  return x;
+}
+
+// Every number of a grid's cells is used once, within cell_count(), and read back by coords().
+template <int D>
+void expect_numbering_is_a_bijection(double box) {
+  const CellGrid<D> grid(box);
+  std::vector<int> seen(grid.cell_count(), 0);
+  const int n = grid.per_side();
+  IVec<D> c = IVec<D>::Zero();
+  for (;;) {
+    const std::int32_t i = grid.index(c);
+    ASSERT_GE(i, 0);
+    ASSERT_LT(static_cast<std::size_t>(i), grid.cell_count());
+    ++seen[i];
+    EXPECT_EQ(grid.coords(i), c);
+    int k = 0;
+    for (; k < D; ++k) {
+      if (++c[k] < n) break;
+      c[k] = 0;
+    }
+    if (k == D) break;
+  }
+  EXPECT_EQ(*std::max_element(seen.begin(), seen.end()), 1);
+  std::size_t used = 0;
+  for (int s : seen) used += s;
+  EXPECT_EQ(used, static_cast<std::size_t>(std::pow(n, D)));
+}
+
+TEST(CellGrid, TiledNumberingIsABijection) {
+  expect_numbering_is_a_bijection<2>(37.5);  // 37 cells a side: padded to 40
+  expect_numbering_is_a_bijection<3>(13.2);  // 13: padded to 16
+  expect_numbering_is_a_bijection<3>(8.0);   // whole tiles
+  expect_numbering_is_a_bijection<1>(10.5);
+}
+
+// A ball of cells spans few pages of cell heads: numbered by rows, each row through it would
+// bring a page of its own (why the grid is tiled).
+TEST(CellGrid, ABallOfCellsTouchesFewerPagesThanRowsWould) {
+  const CellGrid<3> grid(256.5);
+  const int r = 20, mid = 128, n = grid.per_side();
+  std::set<std::int64_t> tiled, rows;  // 4 KiB pages of 4-byte heads: 1024 cell numbers
+  for (int z = -r; z <= r; ++z)
+    for (int y = -r; y <= r; ++y)
+      for (int x = -r; x <= r; ++x) {
+        if (x * x + y * y + z * z > r * r) continue;
+        const IVec<3> c(mid + x, mid + y, mid + z);
+        tiled.insert(grid.index(c) / 1024);
+        rows.insert((static_cast<std::int64_t>(c[2] * n + c[1]) * n + c[0]) / 1024);
+      }
+  // Rows: about 450 pages; tiles: about 200 (a page holds a row of 16 tiles, of which the ball
+  // takes 11).
+  EXPECT_LT(static_cast<double>(tiled.size()), 0.6 * static_cast<double>(rows.size()))
+      << tiled.size() << " pages against " << rows.size();
+}
+
+TEST(SortIntoCells, PutsEachCellsPointsInOneRunInTheAskedOrder) {
+  const CellGrid<3> grid(11.3);
+  for (bool latest_first : {false, true}) {
+    const VecArray<3> before = random_points<3>(2000, grid.box(), 7);
+    VecArray<3> x = before;
+    std::vector<std::int32_t> order;
+    const auto number = [&](const Vec<3>& p) { return grid.index(grid.coords_of(p)); };
+    const CellRuns t = sort_into_cells(x, grid.cell_count(), number, latest_first, order);
+    ASSERT_EQ(order.size(), before.size());
+    std::vector<int> taken(before.size(), 0);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      ++taken[order[k]];
+      EXPECT_EQ(x[k], before[order[k]]);  // the points moved with their order
+    }
+    EXPECT_EQ(*std::min_element(taken.begin(), taken.end()), 1);
+    EXPECT_EQ(*std::max_element(taken.begin(), taken.end()), 1);
+    std::size_t covered = 0;
+    for (std::size_t c = 0; c < grid.cell_count(); ++c) {
+      const std::uint32_t begin = t.base[c / CellRuns::kBlock] + t.offset[c],
+                          end = t.base[(c + 1) / CellRuns::kBlock] + t.offset[c + 1];
+      ASSERT_LE(begin, end);
+      ASSERT_EQ(begin, covered);  // runs follow each other in cell order
+      covered = end;
+      for (std::uint32_t k = begin; k < end; ++k) {
+        EXPECT_EQ(static_cast<std::size_t>(number(x[k])), c);
+        if (k > begin) {
+          EXPECT_EQ(order[k] < order[k - 1], latest_first);
+        }
+      }
+    }
+    EXPECT_EQ(covered, x.size());
+  }
+}
+
+TEST(RestingStore, ABoxStoreHoldsEveryParticleInItsCellsRunUntilItLeaves) {
+  const CellGrid<2> grid(40.7);
+  const VecArray<2> given = random_points<2>(400, grid.box(), 3);
+  RestingStore<2> store(VecArray<2>(given), grid);
+  ASSERT_EQ(store.slots(), 400);
+  std::vector<int> seen(given.size(), 0);
+  for (std::int32_t r = 0; r < store.slots(); ++r) {
+    EXPECT_EQ(store.position(r), given[store.tag(r)]);
+    ++seen[store.tag(r)];
+    const IVec<2> c = store.cell_of(r, grid);
+    EXPECT_EQ(c, grid.coords_of(store.position(r)));
+    const auto run = store.run(grid.index(c));
+    EXPECT_TRUE(run.begin <= r && r < run.end);
+  }
+  EXPECT_EQ(*std::max_element(seen.begin(), seen.end()), 1);
+
+  // A cell whose particles all leave is empty to searches; a dead slot names its record.
+  std::int32_t cell = -1;
+  for (std::int32_t c = 0; c < static_cast<std::int32_t>(grid.cell_count()) && cell < 0; ++c)
+    if (store.run(c).end - store.run(c).begin >= 2) cell = c;
+  ASSERT_GE(cell, 0);
+  const auto run = store.run(cell);
+  store.leave(run.begin, cell, 17);
+  EXPECT_TRUE(store.dead(run.begin));
+  EXPECT_EQ(store.moved_to(run.begin), 17);
+  EXPECT_EQ(store.run(cell).begin, run.begin);  // others still rest there
+  for (std::int32_t r = run.begin + 1; r < run.end; ++r) store.leave(r, cell, 100 + r);
+  EXPECT_EQ(store.run(cell).begin, store.run(cell).end);
+  EXPECT_EQ(store.resting(), 400 - (run.end - run.begin));
+}
+
+// Saves into memory and reads back.
+struct Bytes : StateWriter, StateReader {
+  std::string data;
+  std::size_t at = 0;
+  void bytes(const void* p, std::size_t n) override {
+    data.append(static_cast<const char*>(p), n);
+  }
+  void bytes(void* p, std::size_t n) override {
+    if (n > remaining()) corrupt();
+    std::copy_n(data.data() + at, n, static_cast<char*>(p));
+    at += n;
+  }
+  const StateIdentity& identity() const override { return id; }
+  std::size_t remaining() const override { return data.size() - at; }
+  [[noreturn]] void corrupt() const override { throw std::runtime_error("corrupt"); }
+  StateIdentity id;
+};
+
+TEST(RestingStore, AnUnboundedStoreFindsAParticleAHairOutsideItsCell) {
+  const CellGrid<3> grid(20.0);
+  RestingStore<3> store(grid.cell_count(), 100);
+  const IVec<3> c(5, 6, 7);
+  VecArray<3> made(2);
+  made[0] = (c.cast<double>() + Vec<3>::Constant(0.5)) * grid.side();
+  made[1] = c.cast<double>() * grid.side();
+  made[1][0] -= 1e-12;  // the shift of the medium's origin put it in the cell before
+  store.append_cell(grid.index(c), made);
+  EXPECT_EQ(store.cell_of(0, grid), c);
+  EXPECT_EQ(store.cell_of(1, grid), c);
+  EXPECT_EQ(store.tag(1), 1);
+
+  std::vector<std::int32_t> cells = {grid.index(c)};
+  store.leave(1, grid.index(c), 4);
+  Bytes b;
+  store.save(b, cells);
+  RestingStore<3> back(grid.cell_count(), 100);
+  back.load(b, cells);
+  EXPECT_EQ(back.slots(), 2);
+  EXPECT_EQ(back.resting(), 1);
+  EXPECT_TRUE(back.dead(1));
+  EXPECT_EQ(back.moved_to(1), 4);
+  EXPECT_EQ(back.run(grid.index(c)).end - back.run(grid.index(c)).begin, 2);
+}
+
+// The resting store changes where a kick's particles live, not what they do: the same state
+// started with every particle an engine record (as a thermal start is) gives the same history
+// to the bit, collisions, events and every position.
+template <int D>
+void expect_same_history_with_and_without_store(double t_end) {
+  PhysicsConfig c;
+  c.dim = D;
+  c.particles = 20000;
+  c.restitution = 0.8;
+  InitialState<D> kick = make_initial_state<D>(c);
+  ASSERT_TRUE(kick.velocity.empty());
+  InitialState<D> records = kick;
+  records.velocity.resize(records.position.size());
+  for (std::size_t i = 0; i < records.position.size(); ++i)
+    records.velocity[i] = kick.velocity_of(i);
+  Engine<D> stored(c, std::move(kick)), plain(c, std::move(records));
+  stored.run_until(t_end);
+  plain.run_until(t_end);
+  EXPECT_GT(stored.stats().collisions, 5000);
+  EXPECT_EQ(stored.stats().collisions, plain.stats().collisions);
+  EXPECT_EQ(stored.stats().events, plain.stats().events);
+  EXPECT_EQ(stored.stats().stale, plain.stats().stale);
+  const Snapshot a = stored.snapshot(), b = plain.snapshot();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a.position[i], b.position[i]) << i;
+    ASSERT_EQ(a.velocity[i], b.velocity[i]) << i;
+    ASSERT_EQ(a.first_collision[i], b.first_collision[i]) << i;
+  }
+  EXPECT_EQ(stored.max_overlap_now(), plain.max_overlap_now());
+}
+
+TEST(RestingStore, AKickHasTheHistoryOfTheSameStateHeldAsRecords2D) {
+  expect_same_history_with_and_without_store<2>(5000);
+}
+TEST(RestingStore, AKickHasTheHistoryOfTheSameStateHeldAsRecords3D) {
+  expect_same_history_with_and_without_store<3>(1000);
+}
+
+}  // namespace
+}  // namespace gs
