@@ -146,13 +146,13 @@ std::int32_t Engine<D>::add_record(const Vec<D>& x, const Vec<D>& v, std::int32_
 }
 
 // A resting particle gets its record as it was (at rest since t = 0), in the cell whose run held
-// it; its slot keeps the record's index for predictions made while it rested.
+// it.
 template <int D>
 std::int32_t Engine<D>::promote(std::int32_t r) {
   if constexpr (kRests) {
     const IVec<D> cell = rest_.cell_of(r, grid_);
     const std::int32_t i = add_record(rest_.position(r), Vec<D>::Zero(), rest_.tag(r), cell);
-    rest_.leave(r, grid_.index(cell), i);
+    rest_.leave(r, grid_.index(cell));
     return i;
   } else {
     GS_CHECK_MSG(false, "1D keeps no resting store");
@@ -565,13 +565,14 @@ void Engine<D>::search_resting(std::int32_t i, const Vec<D>& xi, const Neighbour
   }
 }
 
+// A particle that has left the resting store since a prediction made while it rested has been
+// hit (something changed its course, or it would still rest).
 template <int D>
 bool Engine<D>::partner_changed(std::int32_t i) const {
   const std::int32_t p = pred_[i].partner;
   if (p >= 0) return kin_[p].counter != pred_[i].partner_counter;
   if constexpr (kRests)
-    if (p < -1 && rest_.dead(-2 - p))
-      return kin_[rest_.moved_to(-2 - p)].counter != pred_[i].partner_counter;
+    if (p < -1) return rest_.dead(-2 - p);
   return false;
 }
 
@@ -662,9 +663,14 @@ EventKind Engine<D>::process_next() {
   }
   std::int32_t j = pred_[i].partner;
   if constexpr (kRests) {
-    if (j < -1) {  // at rest when predicted: its record, made now if it is still at rest
+    if (j < -1) {  // at rest when predicted: its record is made now, or it has moved since
       const std::int32_t r = -2 - j;
-      j = rest_.dead(r) ? rest_.moved_to(r) : promote(r);
+      if (rest_.dead(r)) {
+        ++stats_.stale;
+        predict(i);
+        return EventKind::Stale;
+      }
+      j = promote(r);
     }
   }
   // The partner's records are needed only after i's search, but are requested now.

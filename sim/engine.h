@@ -170,7 +170,7 @@ class Engine final : public Simulation {
   static std::int32_t resting_partner(std::int32_t r) { return -2 - r; }
   // Whether i's predicted partner has changed course since the prediction.
   bool partner_changed(std::int32_t i) const;
-  // The record of a resting slot's particle, made now if it has none.
+  // The record of resting slot r's particle, made now.
   std::int32_t promote(std::int32_t r);
   void predict(std::int32_t i);
   void predict_from(std::int32_t i, const Neighbours& nb);

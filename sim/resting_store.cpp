@@ -56,9 +56,8 @@ IVec<D> RestingStore<D>::cell_of(std::int32_t r, const CellGrid<D>& grid) const 
 }
 
 template <int D>
-void RestingStore<D>::leave(std::int32_t r, std::int32_t cell, std::int32_t moving) {
+void RestingStore<D>::leave(std::int32_t r, std::int32_t cell) {
   x_[r][0] = std::numeric_limits<double>::quiet_NaN();
-  x_[r][1] = moving;
   --resting_;
   const Run s = run(cell);
   for (std::int32_t k = s.begin; k < s.end; ++k)

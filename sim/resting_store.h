@@ -6,8 +6,8 @@
 //
 // A particle leaves the store when something first collides with it (Engine::promote) and its
 // slot is left dead: a NaN first coordinate, which makes every contact test with it false
-// without a branch (sim/collision.h will_touch), and in the second coordinate the particle's
-// index among the moving, so that a prediction made while it rested can still be checked.
+// without a branch (sim/collision.h will_touch) and tells a prediction made while it rested that
+// it has been hit since.
 //
 // Two layouts of the run table. A box's particles all exist from the start, sorted by cell in
 // cell order (sim/cell_grid.h): a cell's run starts at its block's base (one per 64 cells) plus a 15-bit
@@ -102,8 +102,7 @@ CellRuns sort_into_cells(VecArray<D>& x, std::size_t cells, CellOf&& cell_of, bo
   return t;
 }
 
-// In 2D and 3D (a dead slot keeps the record's index in its second coordinate); the 1D engine
-// keeps every particle a record.
+// In 2D and 3D; the 1D engine keeps every particle a record.
 template <int D>
 class RestingStore {
  public:
@@ -140,7 +139,6 @@ class RestingStore {
   const Vec<D>& position(std::int32_t r) const { return x_[r]; }
   const Vec<D>* positions() const { return x_.data(); }
   bool dead(std::int32_t r) const { return std::isnan(x_[r][0]); }
-  std::int32_t moved_to(std::int32_t r) const { return static_cast<std::int32_t>(x_[r][1]); }
   std::int32_t tag(std::int32_t r) const { return box_ ? tag_[r] : r; }
   std::int32_t slots() const { return static_cast<std::int32_t>(x_.size()); }
   std::int64_t resting() const { return resting_; }
@@ -148,8 +146,8 @@ class RestingStore {
   // The cell whose run holds slot r: the cell of its position, or (in the unbounded medium,
   // where a made particle may lie a hair outside its cell) a neighbour of it.
   IVec<D> cell_of(std::int32_t r, const CellGrid<D>& grid) const;
-  // Marks slot r (in `cell`) dead: its particle is now moving particle `moving`.
-  void leave(std::int32_t r, std::int32_t cell, std::int32_t moving);
+  // Marks slot r (in `cell`) dead: its particle has left.
+  void leave(std::int32_t r, std::int32_t cell);
 
   // The unbounded medium's runs are those of `made`, the made cells (the engine keeps the list).
   void save(StateWriter& out, const std::vector<std::int32_t>& made) const;
