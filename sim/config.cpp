@@ -171,10 +171,11 @@ namespace {
 double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8 + 8.0 * dim; }
 constexpr double kSnapshotBytes = 65 + 140;
 
-// The unbounded medium's cells per made particle: a made cell's list head (4 B) and its place in
-// the list of made cells (4 B), about 2/n cells per particle with the shell beyond the front.
+// The unbounded medium's cells per made particle: a made cell's list head (4 B), its run in the
+// resting store (8 B) and its place in the list of made cells (4 B), about 2/n cells per particle
+// with the shell beyond the front.
 double unbounded_cell_bytes(const PhysicsConfig& c) {
-  return 2.0 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 8;
+  return 2.0 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 16;
 }
 
 }  // namespace
