@@ -229,7 +229,7 @@ void add_sim_cases(std::vector<Case>& cases) {
        true, [] { return kick3d_scaling(200000, 2000000, 4); }});
   cases.push_back(
       {"sim/kick3d_scaling_2e7",
-       "the same with N = 2e6 and 2e7 (4 GB), 2 realisations: both blasts stay inside their box",
+       "the same with N = 2e6 and 2e7 (1 GB), 2 realisations: both blasts stay inside their box",
        true, [] { return kick3d_scaling(2000000, 20000000, 2); }});
 }
 

@@ -462,15 +462,39 @@ void Engine<D>::gather_stencil(std::int32_t i, Neighbours& nb) {
   gather_cells(i, nb, [&](auto&& f) { grid_.for_each_neighbour(cell_of(i), f); });
 }
 
+namespace {
+
+constexpr int kBatch = 64;  // pairs tested together
+
+// Of a batch's pairs, those that will touch before `best`, in turn: take(m) for each new earliest.
+template <class Take>
+void earliest_contact(int count, double now, const double* bb, const double* rr,
+                      const double* disc, double& best, Take&& take) {
+  int hit[kBatch];
+  int hits = 0;
+  for (int m = 0; m < count; ++m) {
+    hit[hits] = m;
+    hits += will_touch(bb[m], disc[m]);
+  }
+  for (int h = 0; h < hits; ++h) {
+    const int m = hit[h];
+    const double t = now + contact_delay(bb[m], rr[m], disc[m]);
+    if (t < best) {
+      best = t;
+      take(m);
+    }
+  }
+}
+
+}  // namespace
+
 // Looks for a collision of i (at xi now) with the gathered particles earlier than its current
 // one. Separations and relative velocities are gathered into small arrays, every pair is tested
 // in a loop the compiler vectorises, and only those that will touch (about one in six at packing
 // 0.5) go on to the square root and the division.
 template <int D>
 void Engine<D>::search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb) {
-  constexpr int kBatch = 64;
   alignas(64) double dr[D][kBatch], dv[D][kBatch], bb[kBatch], rr[kBatch], disc[kBatch];
-  int hit[kBatch];
   double best = pred_[i].coll_time;
   const Vec<D> vi = kin_[i].v;
   for (int start = 0; start < nb.count; start += kBatch) {
@@ -497,20 +521,10 @@ void Engine<D>::search(std::int32_t i, const Vec<D>& xi, const Neighbours& nb) {
       rr[m] = r2;
       disc[m] = contact_discriminant(b, r2, a);
     }
-    int hits = 0;
-    for (int m = 0; m < count; ++m) {
-      hit[hits] = m;
-      hits += will_touch(bb[m], disc[m]);
-    }
-    for (int h = 0; h < hits; ++h) {
-      const int m = hit[h];
-      const double t = now_ + contact_delay(bb[m], rr[m], disc[m]);
-      if (t < best) {
-        best = t;
-        pred_[i].partner = who[m];
-        pred_[i].partner_counter = kin_[who[m]].counter;
-      }
-    }
+    earliest_contact(count, now_, bb, rr, disc, best, [&](int m) {
+      pred_[i].partner = who[m];
+      pred_[i].partner_counter = kin_[who[m]].counter;
+    });
   }
   if constexpr (kRests)
     if (nb.rest_count > 0) search_resting(i, xi, nb, best);
@@ -523,9 +537,7 @@ template <int D>
 void Engine<D>::search_resting(std::int32_t i, const Vec<D>& xi, const Neighbours& nb,
                                double& best) {
   if constexpr (kRests) {
-    constexpr int kBatch = 64;
     alignas(64) double dr[D][kBatch], bb[kBatch], rr[kBatch], disc[kBatch];
-    int hit[kBatch];
     double dv[D], a = 0;
     for (int k = 0; k < D; ++k) {
       dv[k] = 0.0 - kin_[i].v[k];
@@ -547,20 +559,10 @@ void Engine<D>::search_resting(std::int32_t i, const Vec<D>& xi, const Neighbour
         rr[m] = r2;
         disc[m] = contact_discriminant(b, r2, a);
       }
-      int hits = 0;
-      for (int m = 0; m < count; ++m) {
-        hit[hits] = m;
-        hits += will_touch(bb[m], disc[m]);
-      }
-      for (int h = 0; h < hits; ++h) {
-        const int m = hit[h];
-        const double t = now_ + contact_delay(bb[m], rr[m], disc[m]);
-        if (t < best) {
-          best = t;
-          pred_[i].partner = resting_partner(who[m]);
-          pred_[i].partner_counter = 0;  // a record made from a slot starts at 0
-        }
-      }
+      earliest_contact(count, now_, bb, rr, disc, best, [&](int m) {
+        pred_[i].partner = resting_partner(who[m]);
+        pred_[i].partner_counter = 0;  // unused: a slot's particle has changed course once it left
+      });
     }
   }
 }
