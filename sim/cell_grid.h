@@ -67,7 +67,8 @@ class CellGrid {
     std::int32_t tile = i, cell = i;
     for (int k = 0; k < D; ++k) tile /= kTile;
     IVec<D> c;
-    for (int k = 0; k < D; ++k, tile /= tiles, cell /= kTile) c[k] = tile % tiles * kTile + cell % kTile;
+    for (int k = 0; k < D; ++k, tile /= tiles, cell /= kTile)
+      c[k] = tile % tiles * kTile + cell % kTile;
     return c;
   }
 

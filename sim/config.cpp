@@ -168,7 +168,9 @@ namespace {
 
 // A moving particle's record (sim/engine.h), queue entry and the dead slot it left in the resting
 // store (sim/resting_store.h), and a snapshot with its extended-XYZ text.
-double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8 + 8.0 * dim; }
+double engine_bytes(int dim) {
+  return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8 + 8.0 * dim;
+}
 constexpr double kSnapshotBytes = 65 + 140;
 
 // The unbounded medium's cells per made particle: a made cell's list head (4 B), its run in the

@@ -10,8 +10,8 @@ template <int D>
 RestingStore<D>::RestingStore(VecArray<D>&& x, const CellGrid<D>& grid)
     : box_(true), x_(std::move(x)), resting_(static_cast<std::int64_t>(x_.size())) {
   CellRuns t = sort_into_cells(
-      x_, grid.cell_count(), [&](const Vec<D>& p) { return grid.index(grid.coords_of(p)); },
-      false, tag_);
+      x_, grid.cell_count(), [&](const Vec<D>& p) { return grid.index(grid.coords_of(p)); }, false,
+      tag_);
   base_ = std::move(t.base);
   offset_ = std::move(t.offset);
   const std::size_t cells = grid.cell_count();
@@ -117,6 +117,5 @@ void RestingStore<D>::load(StateReader& in, const std::vector<std::int32_t>& mad
 
 template class RestingStore<2>;
 template class RestingStore<3>;
-
 
 }  // namespace gs

@@ -10,9 +10,9 @@
 // it has been hit since.
 //
 // Two layouts of the run table. A box's particles all exist from the start, sorted by cell in
-// cell order (sim/cell_grid.h): a cell's run starts at its block's base (one per 64 cells) plus a 15-bit
-// offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4 cells
-// on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
+// cell order (sim/cell_grid.h): a cell's run starts at its block's base (one per 64 cells) plus a
+// 15-bit offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4
+// cells on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
 // medium appends each cell's particles as the cell is made: its runs are (start, length) words
 // in zero pages (sim/zero_pages.h), of which only the made cells' pages are ever touched.
 #include <cmath>

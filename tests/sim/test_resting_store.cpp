@@ -147,9 +147,7 @@ TEST(RestingStore, ABoxStoreHoldsEveryParticleInItsCellsRunUntilItLeaves) {
 struct Bytes : StateWriter, StateReader {
   std::string data;
   std::size_t at = 0;
-  void bytes(const void* p, std::size_t n) override {
-    data.append(static_cast<const char*>(p), n);
-  }
+  void bytes(const void* p, std::size_t n) override { data.append(static_cast<const char*>(p), n); }
   void bytes(void* p, std::size_t n) override {
     if (n > remaining()) corrupt();
     std::copy_n(data.data() + at, n, static_cast<char*>(p));
