@@ -174,10 +174,11 @@ double engine_bytes(int dim) {
 constexpr double kSnapshotBytes = 65 + 140;
 
 // The unbounded medium's cells per made particle: a made cell's list head (4 B), its run in the
-// resting store (8 B) and its place in the list of made cells (4 B), about 2/n cells per particle
-// with the shell beyond the front.
+// resting store (8 B) and its place in the list of made cells (4 B), 1/n cells per particle and a
+// quarter more for the shell of cells made beyond the front (a cell or two thick: 1.06 at the
+// 100 cells a radius that runs big enough to matter reach).
 double unbounded_cell_bytes(const PhysicsConfig& c) {
-  return 2.0 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 16;
+  return 1.25 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 16;
 }
 
 }  // namespace
