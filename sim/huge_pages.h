@@ -47,10 +47,11 @@ struct HugePageAllocator {
 template <class T>
 using HugeVector = std::vector<T, HugePageAllocator<T>>;
 
-// Makes room for n elements in a plain std::vector and, if that is a fresh block, marks its
-// whole 2 MiB pages MADV_HUGEPAGE before anything touches them. For arrays whose type callers
-// share (the Snapshot's), where the allocator cannot change: a 2e6-sphere snapshot fills 130 MB
-// of fresh memory, and its 32000 page faults of 4 KiB cost more than the copy (perf, in a VM).
+// Makes room for n elements in a std::vector (of any allocator) and, if that is a fresh block,
+// marks its whole 2 MiB pages MADV_HUGEPAGE before anything touches them. For arrays whose type
+// callers share (the Snapshot's, random sequential addition's VecArray), where the allocator
+// cannot change: a 2e6-sphere snapshot fills 130 MB of fresh memory, and its 32000 page faults
+// of 4 KiB cost more than the copy (perf, in a VM).
 template <class T, class A>
 void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   if (v.capacity() >= n) return;

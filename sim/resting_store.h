@@ -1,8 +1,8 @@
 #pragma once
-// The particles of a kick that have never moved: a position each, kept cell by cell so that a
+// The particles of a kick that nothing has hit yet: a position each, kept cell by cell so that a
 // neighbour search reads a cell's resting particles as one run of memory (issue 31 part 2). A
-// resting sphere costs its position, its tag and its cell's share of the run table: about 36 B
-// in 3D at n = 0.25, where the engine's full record costs 160 (sim/bytes_per_particle_3d).
+// resting sphere costs its position, its tag and its cell's share of the run table: 36 B in 3D
+// at n = 0.25, where it cost 161 B as an engine record (sim/bytes_per_particle_3d).
 //
 // A particle leaves the store when something first collides with it (Engine::promote) and its
 // slot is left dead: a NaN first coordinate, which makes every contact test with it false
@@ -14,7 +14,9 @@
 // 15-bit offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4
 // cells on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
 // medium appends each cell's particles as the cell is made: its runs are (start, length) words
-// in zero pages (sim/zero_pages.h), of which only the made cells' pages are ever touched.
+// in zero pages (sim/zero_pages.h), of which only the made cells' pages are ever touched. A cell
+// whose particles have all left reads as empty (a box's loses its kLive flag, a made cell's run
+// its length), so that searches inside a blast skip it.
 #include <cmath>
 #include <cstdint>
 #include <limits>
