@@ -138,9 +138,9 @@ std::vector<Long3D> long3d_cases() {
 // an XYZ snapshot written); made ~ R^3 extrapolates to ~8e6 at 1.2e6. 3D r = 0.95 spreads
 // further: R_rms 99.6 and 1.56e6 made at 1e5 (R ~ t^0.32 over 5.6e4-1e5; peak RSS 951 MB) and,
 // with R ~ t^0.27-0.29 after, 310-340 at 6.5e6, i.e. 4.6-5.9e7 made. Caps: 2.5e7 for 3D r = 0.9,
-// two realisations at once in 23 GB by the engine's estimate (estimated_bytes: ~465 B per particle
-// with a snapshot, what it costs once it moves); 5e7 for 3D r = 0.95, one realisation at a time
-// (23 GB), at the edge of what it needs. 2D: 2e6 (R ~
+// two realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
+// with a snapshot); 5e7 for 3D r = 0.95, one realisation at a time (21 GB), at the edge of what
+// it needs. 2D: 2e6 (R ~
 // t^(1/3)-t^0.4: r = 0.95 has R_rms 280 and 7.7e4 active at 1.4e5, so ~6e5 made at 1.6e6).
 // Realisations: t_c1's interval comes from resampling realisations (200 draws, percentiles), and
 // a percentile interval over M realisations is set by single realisations below M ~ 8 (8 gives

@@ -166,19 +166,14 @@ Medium default_medium(const PhysicsConfig& c) {
 
 namespace {
 
-// A moving particle's record (sim/engine.h), queue entry and the dead slot it left in the resting
-// store (sim/resting_store.h), and a snapshot with its extended-XYZ text.
-double engine_bytes(int dim) {
-  return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8 + 8.0 * dim;
-}
+// The engine's records (sim/engine.h) and queue entry, and a snapshot with its extended-XYZ text.
+double engine_bytes(int dim) { return 64 + 32 + 16 + 8 + 4 + 4.0 * dim + 8 + 4 + 8; }
 constexpr double kSnapshotBytes = 65 + 140;
 
-// The unbounded medium's cells per made particle: a made cell's list head (4 B), its run in the
-// resting store (8 B) and its place in the list of made cells (4 B), 1/n cells per particle and a
-// quarter more for the shell of cells made beyond the front (a cell or two thick: 1.06 at the
-// 100 cells a radius that runs big enough to matter reach).
+// The unbounded medium's cells per made particle: a made cell's list head (4 B) and its place in
+// the list of made cells (4 B), about 2/n cells per particle with the shell beyond the front.
 double unbounded_cell_bytes(const PhysicsConfig& c) {
-  return 1.25 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 16;
+  return 2.0 / (c.density * std::pow(kUnboundedCellSide, c.dim)) * 8;
 }
 
 }  // namespace
@@ -196,8 +191,9 @@ double estimated_bytes(const PhysicsConfig& c, int snapshot_copies) {
                (engine + unbounded_cell_bytes(c) + snapshot * snapshot_copies) +
            (1 << 20) * 48.0;
   }
-  // Random sequential addition's centres, links and cell heads (about 4 cells a particle).
-  const double initial = 8.0 * c.dim + 20;
+  // Random sequential addition's centres, links and cell heads, and a kick's resting store
+  // (sim/resting_store.h), whose slots stay when their particles become records.
+  const double initial = 8.0 * c.dim + 20 + 8.0 * c.dim + 12;
   const double cells = std::pow(std::floor(c.box() / (1.0 + 1e-9)), c.dim);
   return static_cast<double>(c.particles) * (engine + initial + snapshot * snapshot_copies) +
          8 * cells;

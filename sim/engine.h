@@ -8,17 +8,16 @@
 // counter; if the partner has changed velocity since, the event is stale and the particle simply
 // predicts again. Positions are updated lazily (each particle keeps the time its position refers
 // to). A particle that has never moved is in no list but its cell's and costs nothing, so a kick
-// run costs what its active particles cost, not what N costs. In a kick (2D, 3D) such particles
-// are not even engine records: they wait in a RestingStore (sim/resting_store.h), a position
-// each, and become records (Engine::promote) when something first collides with them.
+// run costs what its active particles cost, not what N costs. In a kick in a box (2D, 3D) such
+// particles are not even engine records: they wait in a RestingStore (sim/resting_store.h), a
+// position each, and become records (Engine::promote) when something first collides with them.
 //
 // In the unbounded medium (--medium unbounded) the box is a grid far larger than a front ever
 // gets, whose cells are made only when a moving particle's stencil first reaches them: their
-// particles come from UnboundedMedium (sim/unbounded_medium.h) and are appended to the resting
-// store, so a run holds the particles near the front and pays nothing for the rest. The
-// per-particle arrays are reserved up front for the most particles the run may make (--particles)
-// and grown into, so the hot loop never reallocates; the cell heads are zero pages until their
-// cell is made.
+// particles come from UnboundedMedium (sim/unbounded_medium.h) and are appended at rest, so a run
+// holds the particles near the front and pays nothing for the rest. The per-particle arrays are
+// reserved up front for the most particles the run may make (--particles) and grown into, so the
+// hot loop never reallocates; the cell heads are zero pages until their cell is made.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -255,9 +254,9 @@ class Engine final : public Simulation {
   std::vector<double> first_collision_;
   std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
 
-  // The particles of a kick that have never been hit: in 2D and 3D kicks (rests_), none in 1D,
-  // whose sticky clusters keep every particle a record in order along the line, nor in thermal
-  // starts, where all move.
+  // The particles of a kick in a box that have never been hit: in 2D and 3D (rests_), none in
+  // 1D, whose sticky clusters keep every particle a record in order along the line, in thermal
+  // starts, where all move, nor in the unbounded medium (make_cell).
   static constexpr bool kRests = D > 1;
   bool rests_ = false;
   RestingStore<D> rest_;

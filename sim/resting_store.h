@@ -9,14 +9,13 @@
 // without a branch (sim/collision.h will_touch) and tells a prediction made while it rested that
 // it has been hit since.
 //
-// Two layouts of the run table. A box's particles all exist from the start, sorted by cell in
-// cell order (sim/cell_grid.h): a cell's run starts at its block's base (one per 64 cells) plus a
-// 15-bit offset, and ends where the next cell's starts, so a cell costs 2 bytes (n = 0.25 puts 4
-// cells on each particle: a 4-byte start per cell alone would be 16 B a particle). The unbounded
-// medium appends each cell's particles as the cell is made: its runs are (start, length) words
-// in zero pages (sim/zero_pages.h), of which only the made cells' pages are ever touched. A cell
-// whose particles have all left reads as empty (a box's loses its kLive flag, a made cell's run
-// its length), so that searches inside a blast skip it.
+// The particles are sorted by cell in cell order (sim/cell_grid.h): a cell's run starts at its
+// block's base (one per 64 cells) plus a 15-bit offset, and ends where the next cell's starts,
+// so a cell costs 2 bytes (n = 0.25 puts 4 cells on each particle: a 4-byte start per cell alone
+// would be 16 B a particle). A cell whose particles have all left loses its kLive flag and reads
+// as empty, so that searches inside a blast skip it. Only a box's kicks keep a store: the
+// unbounded medium makes its particles just ahead of the front, where they are about to be hit,
+// and makes them records at once (sim/engine.h).
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -104,7 +103,7 @@ CellRuns sort_into_cells(VecArray<D>& x, std::size_t cells, CellOf&& cell_of, bo
   return t;
 }
 
-// In 2D and 3D; the 1D engine keeps every particle a record.
+// In 2D and 3D boxes; the 1D engine keeps every particle a record.
 template <int D>
 class RestingStore {
  public:
@@ -113,23 +112,15 @@ class RestingStore {
   };
 
   RestingStore() = default;
-  // A box: the particles at `x` (their tags are their indices there), sorted here by cell; the
-  // order within a cell is the tags'.
+  // The particles at `x` (their tags are their indices there), sorted here by the cells of
+  // `grid`; the order within a cell is the tags'.
   RestingStore(VecArray<D>&& x, const CellGrid<D>& grid);
-  // The unbounded medium: no particle yet, room for `capacity` (address space until made).
-  RestingStore(std::size_t cells, std::size_t capacity);
+  // An empty store of `grid`, for load().
+  explicit RestingStore(const CellGrid<D>& grid);
 
-  // Appends the particles of a newly made cell of the unbounded medium (tags in making order).
-  void append_cell(std::int32_t cell, const VecArray<D>& x);
-
-  // The slots of a cell's particles, empty once they have all left; a dead slot within is
-  // possible. Cells of the unbounded medium not made yet are empty.
+  // The slots of a cell's particles (the cell of grid.coords_of(position)), empty once they
+  // have all left; a dead slot within is possible.
   Run run(std::int32_t cell) const {
-    if (!box_) {
-      const std::uint64_t w = runs_[cell];
-      const auto begin = static_cast<std::int32_t>(w >> 8);
-      return {begin, begin + static_cast<std::int32_t>(w & 0xff)};
-    }
     // Without a branch: whether a cell still holds a resting particle is a coin toss.
     const std::uint16_t here = offset_[cell];
     const std::size_t next = static_cast<std::size_t>(cell) + 1;
@@ -141,41 +132,27 @@ class RestingStore {
   const Vec<D>& position(std::int32_t r) const { return x_[r]; }
   const Vec<D>* positions() const { return x_.data(); }
   bool dead(std::int32_t r) const { return std::isnan(x_[r][0]); }
-  std::int32_t tag(std::int32_t r) const { return box_ ? tag_[r] : r; }
+  std::int32_t tag(std::int32_t r) const { return tag_[r]; }
   std::int32_t slots() const { return static_cast<std::int32_t>(x_.size()); }
   std::int64_t resting() const { return resting_; }
 
-  // The cell whose run holds slot r: the cell of its position, or (in the unbounded medium,
-  // where a made particle may lie a hair outside its cell) a neighbour of it.
-  IVec<D> cell_of(std::int32_t r, const CellGrid<D>& grid) const;
   // Marks slot r (in `cell`) dead: its particle has left.
   void leave(std::int32_t r, std::int32_t cell);
 
-  // The unbounded medium's runs are those of `made`, the made cells (the engine keeps the list).
-  void save(StateWriter& out, const std::vector<std::int32_t>& made) const;
-  // Into a store constructed as the saved one was (a box's from its grid alone: see below).
-  void load(StateReader& in, const std::vector<std::int32_t>& made);
-  // An empty box store of `grid`, for load().
-  explicit RestingStore(const CellGrid<D>& grid);
+  void save(StateWriter& out) const;
+  void load(StateReader& in);  // into a store made for the same grid
 
  private:
   static constexpr std::size_t kBlock = CellRuns::kBlock;
   static constexpr std::uint16_t kLive = 0x8000;  // the cell still holds a resting particle
-  bool in_run(std::int32_t r, std::int32_t cell) const {
-    const Run s = run(cell);
-    return s.begin <= r && r < s.end;
-  }
 
-  bool box_ = true;
   VecArray<D> x_;
   std::int64_t resting_ = 0;
-  // A box: each slot's tag; each cell's start as the base of its block of kBlock cells plus its
-  // offset (with kLive), for the cells and one past the last, whose start is the total.
+  // Each slot's tag; each cell's start as the base of its block of kBlock cells plus its offset
+  // (with kLive), for the cells and one past the last, whose start is the total.
   std::vector<std::int32_t> tag_;
   std::vector<std::uint32_t> base_;
   ZeroPages<std::uint16_t> offset_;
-  // The unbounded medium: (start << 8 | length) of each made cell.
-  ZeroPages<std::uint64_t> runs_;
 };
 
 }  // namespace gs

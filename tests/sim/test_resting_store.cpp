@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <set>
-#include <string>
 #include <vector>
 
 #include "sim/cell_grid.h"
@@ -12,7 +11,6 @@
 #include "sim/initial.h"
 #include "sim/resting_store.h"
 #include "sim/rng.h"
-#include "sim/state_stream.h"
 
 namespace gs {
 namespace {
@@ -122,9 +120,7 @@ TEST(RestingStore, ABoxStoreHoldsEveryParticleInItsCellsRunUntilItLeaves) {
   for (std::int32_t r = 0; r < store.slots(); ++r) {
     EXPECT_EQ(store.position(r), given[store.tag(r)]);
     ++seen[store.tag(r)];
-    const IVec<2> c = store.cell_of(r, grid);
-    EXPECT_EQ(c, grid.coords_of(store.position(r)));
-    const auto run = store.run(grid.index(c));
+    const auto run = store.run(grid.index(grid.coords_of(store.position(r))));
     EXPECT_TRUE(run.begin <= r && r < run.end);
   }
   EXPECT_EQ(*std::max_element(seen.begin(), seen.end()), 1);
@@ -141,48 +137,6 @@ TEST(RestingStore, ABoxStoreHoldsEveryParticleInItsCellsRunUntilItLeaves) {
   for (std::int32_t r = run.begin + 1; r < run.end; ++r) store.leave(r, cell);
   EXPECT_EQ(store.run(cell).begin, store.run(cell).end);
   EXPECT_EQ(store.resting(), 400 - (run.end - run.begin));
-}
-
-// Saves into memory and reads back.
-struct Bytes : StateWriter, StateReader {
-  std::string data;
-  std::size_t at = 0;
-  void bytes(const void* p, std::size_t n) override { data.append(static_cast<const char*>(p), n); }
-  void bytes(void* p, std::size_t n) override {
-    if (n > remaining()) corrupt();
-    std::copy_n(data.data() + at, n, static_cast<char*>(p));
-    at += n;
-  }
-  const StateIdentity& identity() const override { return id; }
-  std::size_t remaining() const override { return data.size() - at; }
-  [[noreturn]] void corrupt() const override { throw std::runtime_error("corrupt"); }
-  StateIdentity id;
-};
-
-TEST(RestingStore, AnUnboundedStoreFindsAParticleAHairOutsideItsCell) {
-  const CellGrid<3> grid(20.0);
-  RestingStore<3> store(grid.cell_count(), 100);
-  const IVec<3> c(5, 6, 7);
-  VecArray<3> made(2);
-  made[0] = (c.cast<double>() + Vec<3>::Constant(0.5)) * grid.side();
-  made[1] = c.cast<double>() * grid.side();
-  made[1][0] -= 1e-12;  // the shift of the medium's origin put it in the cell before
-  store.append_cell(grid.index(c), made);
-  EXPECT_EQ(store.cell_of(0, grid), c);
-  EXPECT_EQ(store.cell_of(1, grid), c);
-  EXPECT_EQ(store.tag(1), 1);
-
-  std::vector<std::int32_t> cells = {grid.index(c)};
-  store.leave(1, grid.index(c));
-  Bytes b;
-  store.save(b, cells);
-  RestingStore<3> back(grid.cell_count(), 100);
-  back.load(b, cells);
-  EXPECT_EQ(back.slots(), 2);
-  EXPECT_EQ(back.resting(), 1);
-  EXPECT_TRUE(back.dead(1));
-  EXPECT_FALSE(back.dead(0));
-  EXPECT_EQ(back.run(grid.index(c)).end - back.run(grid.index(c)).begin, 2);
 }
 
 // The resting store changes where a kick's particles live, not what they do: the same state
