@@ -206,7 +206,7 @@ TEST(CliRun, BadInputIsOneLineAndTouchesNothing) {
       {"run --dim 3 --particles 1000000000000", "GB of memory"},
       // Counts in scientific notation are read as the whole numbers they are, or named.
       {"run --dim 3 --particles 1e12", "GB of memory"},
-      {"run --dim 3 --medium box --particles 1e9", "needs about 256 GB of memory"},
+      {"run --dim 3 --medium box --particles 1e9", "needs about 268 GB of memory"},
       {"run --particles 2.5e0", "not a whole number"},
       {"run --sample-every 1e-7", "use --sample-every 0.01 or more"},
       {"run --particles 2000 --density 2e-6", "neighbour cells"},
