@@ -23,8 +23,11 @@ class CellGrid {
   explicit CellGrid(double box, double min_side = 1.0) : box_(box) {
     GS_CHECK(min_side >= 1.0);
     // The margin keeps cells wider than a diameter even for positions a round-off outside them.
-    per_side_ = std::max(1, static_cast<int>(std::floor(box / (min_side * (1.0 + 1e-9)))));
+    per_side_ = static_cast<int>(std::floor(box / (1.0 + 1e-9)));
     GS_CHECK(per_side_ >= 1);
+    // Wider cells: as many as fit, and at least the one a box of a diameter or more holds.
+    const int wide = static_cast<int>(std::floor(box / (min_side * (1.0 + 1e-9))));
+    per_side_ = std::clamp(wide, 1, per_side_);
     side_ = box / per_side_;
     const int tiles = (per_side_ + kTile - 1) / kTile;
     std::int64_t count = 1, tile_cells = 1;

@@ -196,13 +196,13 @@ void Engine<D>::take_memory(std::size_t n) {
   const auto each = static_cast<std::int64_t>(std::ceil(unbounded_bytes_per_particle(config_)));
   if (memory_.take(static_cast<std::int64_t>(n) * each)) return;
   const MemoryBudget& all = MemoryBudget::process();
-  throw UserError(
-      "--t-max " + format_double(config_.t_max) + ": the unbounded medium's " +
-      std::to_string(kin_.size() + n) + " particles (about " +
-      std::to_string(each) + " B each) would not fit in this machine's " +
-      format_double(std::round(static_cast<double>(all.capacity()) / 1e8) / 10) + " GB of memory" +
-      (all.taken() > memory_.bytes() ? " beside this process's other runs" : "") +
-      " at t = " + format_double(now_) + "; use a smaller --t-max");
+  throw UserError("--t-max " + format_double(config_.t_max) + ": the unbounded medium's " +
+                  std::to_string(kin_.size() + n) + " particles (about " + std::to_string(each) +
+                  " B each) would not fit in this machine's " +
+                  format_double(std::round(static_cast<double>(all.capacity()) / 1e8) / 10) +
+                  " GB of memory" +
+                  (all.taken() > memory_.bytes() ? " beside this process's other runs" : "") +
+                  " at t = " + format_double(now_) + "; use a smaller --t-max");
 }
 
 namespace {

@@ -2,7 +2,6 @@
 // bit for bit, ties included; damaged or foreign checkpoint files are refused in one line.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +12,7 @@
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/initial.h"
+#include "tests/sim/same_history.h"
 
 namespace gs {
 namespace {
@@ -41,24 +41,7 @@ std::unique_ptr<Simulation> load(const PhysicsConfig& c, const fs::path& file) {
   return sim;
 }
 
-// Steps both engines `events` times; every event must be of the same kind at the same time,
-// and the states must end identical to the last bit.
-void expect_same_history(Simulation& a, Simulation& b, int events) {
-  for (int k = 0; k < events; ++k) {
-    const EventKind ka = a.step(), kb = b.step();
-    ASSERT_EQ(ka, kb) << "event " << k;
-    ASSERT_EQ(a.time(), b.time()) << "event " << k;
-    if (ka == EventKind::None) break;
-  }
-  const Snapshot sa = a.snapshot(), sb = b.snapshot();
-  ASSERT_EQ(sa.size(), sb.size());
-  for (std::size_t i = 0; i < sa.size(); ++i) {
-    ASSERT_EQ(sa.position[i], sb.position[i]) << i;
-    ASSERT_EQ(sa.velocity[i], sb.velocity[i]) << i;
-    ASSERT_EQ(sa.first_collision[i], sb.first_collision[i]) << i;
-  }
-  EXPECT_EQ(std::memcmp(&a.stats(), &b.stats(), sizeof(EngineStats)), 0);
-}
+using test::expect_same_history;
 
 TEST(Checkpoint, KickContinuesTheSameHistory2DAnd3D) {
   for (int dim : {2, 3}) {
