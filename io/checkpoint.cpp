@@ -15,8 +15,9 @@ namespace gs {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'S', 'C', 'H', 'K', 'P', 'T', '\n'};
-// Bumped whenever what any writer puts changes (2: the resting store, sim/resting_store.h).
-constexpr std::uint32_t kFormat = 2;
+// Bumped whenever what any writer puts changes (2: the resting store, sim/resting_store.h; 3:
+// singly linked cell lists, no list of moved records in a box kick).
+constexpr std::uint32_t kFormat = 3;
 constexpr std::size_t kChunk = std::size_t{4} << 20;  // the checksum is taken chunk by chunk
 
 struct Header {

@@ -117,7 +117,6 @@ void Engine<D>::reserve_particles(std::size_t n) {
   tag_.reserve(n);
   image_.reserve(n);
   next_.reserve(n);
-  prev_.reserve(n);
   pred_.reserve(n);
   first_collision_.reserve(n);
   moved_.reserve(n);
@@ -133,7 +132,6 @@ std::int32_t Engine<D>::add_record(const Vec<D>& x, const Vec<D>& v, std::int32_
   tag_.push_back(tag);
   image_.push_back(IVec<D>::Zero());
   next_.push_back(-1);
-  prev_.push_back(-1);
   pred_.push_back(Prediction{});
   first_collision_.push_back(-1.0);
   queue_.grow(kin_.size());
@@ -248,7 +246,6 @@ void Engine<D>::save(StateWriter& out) const {
     save_heads(out, head_, head_offset_);
   }
   out.vector(next_);
-  out.vector(prev_);
   out.vector(pred_);
   queue_.save(out);
   out.vector(first_collision_);
@@ -294,7 +291,6 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
     load_heads(in, head_, head_offset_);
   }
   in.vector(next_);
-  in.vector(prev_);
   in.vector(pred_);
   queue_.load(in);
   in.vector(first_collision_);
@@ -309,8 +305,8 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
       rest_.load(in);
     }
   }
-  in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && prev_.size() == m &&
-            pred_.size() == m && first_collision_.size() == m && moved_.size() <= m &&
+  in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && pred_.size() == m &&
+            first_collision_.size() == m && moved_.size() <= m && (!rests_ || moved_.empty()) &&
             queue_.particles() == m);
   if (c.unbounded()) {
     take_memory(m);
@@ -358,26 +354,26 @@ template <int D>
 void Engine<D>::cell_insert(std::int32_t i, std::int32_t cell) {
   const std::int32_t first = head_[cell] - head_offset_;  // -1: the cell is empty
   next_[i] = first;
-  prev_[i] = -1;
-  if (first >= 0) prev_[first] = i;
   head_[cell] = i + head_offset_;
 }
 
 template <int D>
 void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
-  const std::int32_t next = next_[i];
-  if (prev_[i] >= 0)
-    next_[prev_[i]] = next;
-  else
-    head_[cell] = next + head_offset_;
-  if (next >= 0) prev_[next] = prev_[i];
+  // Singly linked: a cell holds a few records, and a back link would cost 4 B a record.
+  std::int32_t j = head_[cell] - head_offset_;
+  if (j == i) {
+    head_[cell] = next_[i] + head_offset_;
+    return;
+  }
+  while (next_[j] != i) j = next_[j];
+  next_[j] = next_[i];
 }
 
 template <int D>
 void Engine<D>::mark_moving(std::int32_t i) {
   if (kin_[i].moving) return;
   kin_[i].moving = true;
-  moved_.push_back(i);  // capacity reserved for every particle there may be: never reallocates
+  if (!rests_) moved_.push_back(i);  // capacity reserved for every particle: never reallocates
 }
 
 template <int D>
@@ -804,23 +800,23 @@ Sample Engine<D>::sample() const {
   s.events = stats_.events;
   Vec<D> com = Vec<D>::Zero();
   double v2_active = 0;
-  for (std::int32_t i : moved_) {
+  for_each_moved([&](std::int32_t i) {
     const double v2 = kin_[i].v.squaredNorm();
     s.energy += 0.5 * v2;
     for (int k = 0; k < D; ++k) s.momentum[k] += kin_[i].v[k];
-    if (!kin_[i].active) continue;
+    if (!kin_[i].active) return;
     ++s.active;
     v2_active += v2;
     com += position(i);
-  }
+  });
   if (s.active == 0) return s;
   com /= static_cast<double>(s.active);
   Eigen::Matrix<double, D, D> gyration = Eigen::Matrix<double, D, D>::Zero();
-  for (std::int32_t i : moved_) {
-    if (!kin_[i].active) continue;
+  for_each_moved([&](std::int32_t i) {
+    if (!kin_[i].active) return;
     const Vec<D> d = position(i) - com;
     gyration += d * d.transpose();
-  }
+  });
   gyration /= static_cast<double>(s.active);
   s.radius_rms = std::sqrt(gyration.trace());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(gyration);
@@ -834,12 +830,12 @@ Sample Engine<D>::sample() const {
 template <int D>
 void Engine<D>::active_positions(std::vector<Eigen::Vector3d>& out) const {
   out.clear();
-  for (std::int32_t i : moved_) {
-    if (!kin_[i].active) continue;
+  for_each_moved([&](std::int32_t i) {
+    if (!kin_[i].active) return;
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     x.head<D>() = position(i);
     out.push_back(x);
-  }
+  });
 }
 
 template <int D>
@@ -900,8 +896,9 @@ template <int D>
 void Engine<D>::active_snapshot(Snapshot& s) const {
   snapshot_info(s);
   std::vector<std::int32_t> active;
-  for (std::int32_t i : moved_)
+  for_each_moved([&](std::int32_t i) {
     if (kin_[i].active) active.push_back(i);
+  });
   // snapshot()'s order is the initial state's (tag_), which active_subset keeps.
   std::sort(active.begin(), active.end(),
             [&](std::int32_t a, std::int32_t b) { return tag_[a] < tag_[b]; });

@@ -215,7 +215,7 @@ class Engine final : public Simulation {
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
   std::vector<IVec<D>> image_;
 
-  // The records of each cell as doubly linked lists, apart from the particle data: a search walks
+  // The records of each cell as singly linked lists, apart from the particle data: a search walks
   // them without waiting for each particle's cache line. A cell's head holds its first record
   // plus head_offset_, so that an untouched zero page is an empty cell: in a box the offset is 1,
   // in the unbounded medium 2, where 1 is an empty cell and 0 a cell not made yet, which a search
@@ -223,7 +223,7 @@ class Engine final : public Simulation {
   static constexpr std::int32_t kEmptyCell = 1, kUnmadeCell = 0;
   std::int32_t head_offset_ = 1;
   ZeroPages<std::int32_t> head_;
-  HugeVector<std::int32_t> next_, prev_;
+  HugeVector<std::int32_t> next_;
 
   // The next event of each particle (best collision and next crossing) and its cell, in one half
   // cache line: every event reads all of it, and cells in an array of their own cost one more
@@ -252,7 +252,16 @@ class Engine final : public Simulation {
   Neighbours near_[2];  // scratch of the searches: the two spheres of a collision
 
   std::vector<double> first_collision_;
-  std::vector<std::int32_t> moved_;  // every particle that has ever moved, in order
+  // Every record that has ever moved, in the order it first moved; none kept where the records
+  // are made as they are first hit (rests_), which are that list already.
+  std::vector<std::int32_t> moved_;
+  template <class F>
+  void for_each_moved(F&& f) const {
+    if (rests_)
+      for (std::int32_t i = 0; i < moving(); ++i) f(i);
+    else
+      for (std::int32_t i : moved_) f(i);
+  }
 
   // The particles of a kick in a box that have never been hit: in 2D and 3D (rests_), none in
   // 1D, whose sticky clusters keep every particle a record in order along the line, in thermal

@@ -33,7 +33,6 @@ class EventQueue {
     entry_.reserve(capacity_);
     entry_.resize(n);
     all_.reserve(capacity_);
-    times_.reserve(capacity_);
     head_.reserve(std::bit_ceil(std::max(2 * capacity_, kMinBuckets)));
     rebuild(kMinBuckets);
   }
@@ -311,22 +310,32 @@ class EventQueue {
     for (std::int32_t h : head_)
       for (std::int32_t j = h; j != kNone; j = entry_[j].next) all_.push_back(j);
     for (std::int32_t j = overflow_; j != kNone; j = entry_[j].next) all_.push_back(j);
-    times_.clear();
-    for (std::int32_t j : all_) times_.push_back(entry_[j].time);
     double earliest = 0;
-    if (!times_.empty()) {
+    if (!all_.empty()) {
+      // The links are free until the relinking: each entry's next holds its place in all_, so
+      // that all_ can be selected on by time (no copy of the times, 8 B an event) and then put
+      // back in the order of the relinking, which breaks ties as before.
+      for (std::size_t k = 0; k < all_.size(); ++k)
+        entry_[all_[k]].next = static_cast<std::int32_t>(k);
+      const auto time = [&](std::size_t k) { return entry_[all_[k]].time; };
+      const auto earlier = [&](std::int32_t a, std::int32_t b) {
+        return entry_[a].time < entry_[b].time;
+      };
       // The m-th earliest event, with m grown past any events tied with the earliest.
-      const std::size_t last = times_.size() - 1;
+      const std::size_t last = all_.size() - 1;
       std::size_t m = std::min<std::size_t>(last, kLongList);
       for (;; m = std::min(last, 8 * m)) {
-        const auto nth = times_.begin() + static_cast<std::ptrdiff_t>(m);
-        std::nth_element(times_.begin(), nth, times_.end());
-        earliest = *std::min_element(times_.begin(), nth + 1);
-        if (m == last || times_[m] > earliest) break;
+        const auto nth = all_.begin() + static_cast<std::ptrdiff_t>(m);
+        std::nth_element(all_.begin(), nth, all_.end(), earlier);
+        earliest = entry_[*std::min_element(all_.begin(), nth + 1, earlier)].time;
+        if (m == last || time(m) > earliest) break;
       }
-      const double width = m > 0 ? (times_[m] - earliest) / static_cast<double>(m) : 0;
+      const double width = m > 0 ? (time(m) - earliest) / static_cast<double>(m) : 0;
       // Bucket numbers must stay exact integers in a double.
       if (width > 1e-12 * std::max(1.0, std::abs(earliest))) width_ = width;
+      for (std::size_t k = 0; k < all_.size(); ++k)
+        while (static_cast<std::size_t>(entry_[all_[k]].next) != k)
+          std::swap(all_[k], all_[static_cast<std::size_t>(entry_[all_[k]].next)]);
     }
     inv_width_ = 1.0 / width_;
     head_.assign(buckets, kNone);
@@ -353,7 +362,6 @@ class EventQueue {
   double floor_ = INFINITY;    // no entry is due before this: the last top's time, or earlier
   std::size_t finds_ = 0, next_check_ = 0;
   std::vector<std::int32_t> all_;  // scratch of rebuild
-  std::vector<double> times_;      // scratch of rebuild
 };
 
 }  // namespace gs
