@@ -365,7 +365,10 @@ void Engine<D>::cell_remove(std::int32_t i, std::int32_t cell) {
     head_[cell] = next_[i] + head_offset_;
     return;
   }
-  while (next_[j] != i) j = next_[j];
+  for (;; j = next_[j]) {
+    GS_CHECK(j >= 0);  // i is in its cell's list
+    if (next_[j] == i) break;
+  }
   next_[j] = next_[i];
 }
 
