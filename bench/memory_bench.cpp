@@ -37,10 +37,8 @@ double resident_bytes() {
 struct Footprint {
   double peak = 0;         // bytes, the child's whole life (construction's transients included)
   double constructed = 0;  // bytes held once the engine is made
-  double halfway = 0;      // bytes held at t_max / 2
   double after_run = 0;    // bytes held at t_max
-  double active_halfway = 0;  // particles that have moved by t_max / 2
-  double active = 0;          // particles that have moved by t_max
+  double active = 0;       // particles that have moved by t_max
   double made = 0;         // particles the engine holds at t_max
   double collisions = 0, events = 0;
   double run_cpu = 0;   // CPU-seconds of run_until
@@ -57,8 +55,7 @@ PhysicsConfig kick_at(int dim, std::int64_t n, double t_max) {
 }
 
 // The kick of `c` run to its t_max, measured in a child. `pages_alone`: without transparent
-// huge pages, so that the resident set counts the bytes touched to 4 kB; with them each array
-// is resident to its next 2 MB, a fixed cost that at 1e5 moving particles looks like 50 B each.
+// huge pages, so that the resident set counts the bytes touched to 4 kB.
 Footprint kick_footprint(const PhysicsConfig& c, bool pages_alone = false) {
   int fd[2];
   GS_CHECK(pipe(fd) == 0);
@@ -75,9 +72,6 @@ Footprint kick_footprint(const PhysicsConfig& c, bool pages_alone = false) {
     Footprint f;
     f.constructed = resident_bytes();
     const double cpu0 = cpu_seconds(), wall0 = wall_seconds();
-    sim->run_until(c.t_max / 2);
-    f.halfway = resident_bytes();
-    f.active_halfway = static_cast<double>(sim->sample().active);
     sim->run_until(c.t_max);
     f.run_cpu = cpu_seconds() - cpu0;
     f.run_wall = wall_seconds() - wall0;
@@ -104,9 +98,9 @@ Footprint kick_footprint(const PhysicsConfig& c, bool pages_alone = false) {
 
 // At rest: the difference between N and 2N after the same kick (the blast is the same size, so
 // the extra particles are all at rest). Moving: that, plus the growth of the 2N run's resident
-// set from t_max / 2 to t_max per particle that started moving in between, which leaves out
-// what the blast's start holds whatever its size. Both in children without huge pages, whose
-// rounding of each array to 2 MB is a cost per array, not per particle.
+// set from its construction to t_max per particle that started moving in between. Both in
+// children without huge pages, whose rounding of each array up to 2 MB is a cost per array, not
+// per particle (with them, about 50 B a moving sphere at 1.4e5 of them).
 std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
   const Footprint one = kick_footprint(kick_at(dim, n, t_max), true);
   const Footprint two = kick_footprint(kick_at(dim, 2 * n, t_max), true);
@@ -118,10 +112,9 @@ std::vector<Figure> bytes_per_particle(int dim, std::int64_t n, double t_max) {
           {"bytes_per_resting_particle_at_t_max", per_rest(&Footprint::after_run), "B", ""},
           {"bytes_per_moving_particle",
            per_rest(&Footprint::constructed) +
-               (two.after_run - two.halfway) / std::max(1.0, two.active - two.active_halfway),
+               (two.after_run - two.constructed) / std::max(1.0, two.active),
            "B", "<= 160"},
-          {"moving_particles", two.active, "", ""},
-          {"moving_particles_from_halfway", two.active - two.active_halfway, "", ""}};
+          {"moving_particles", two.active, "", ""}};
 }
 
 // The same r = 0.8 kick (same seed statistics, not the same gas) in a box of n particles and in
