@@ -156,6 +156,16 @@ std::int32_t Engine<D>::promote(std::int32_t r) {
 }
 
 template <int D>
+void Engine<D>::compact_store() {
+  if constexpr (kRests) {
+    const auto rename = rest_.compact();
+    for (Prediction& p : pred_)
+      if (p.partner < -1) p.partner = resting_partner(rename(-2 - p.partner));
+    compact_at_ = std::max<std::int64_t>(kCompactAt, moving());
+  }
+}
+
+template <int D>
 void Engine<D>::make_cell(std::int32_t cell) {
   const int side = grid_.per_side(), middle = side / 2;
   typename UnboundedMedium<D>::Cell key;
@@ -253,8 +263,12 @@ void Engine<D>::save(StateWriter& out) const {
   out.vector(cluster_lo_);
   out.vector(cluster_hi_);
   out.value(rests_);
-  if constexpr (kRests)
-    if (rests_) rest_.save(out);
+  if constexpr (kRests) {
+    if (rests_) {
+      rest_.save(out);
+      out.value(compact_at_);
+    }
+  }
 }
 
 template <int D>
@@ -302,7 +316,8 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   if constexpr (kRests) {
     if (rests_) {
       rest_ = RestingStore<D>(grid_);
-      rest_.load(in);
+      rest_.load(in, c.particles);
+      in.value(compact_at_);
     }
   }
   in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && pred_.size() == m &&
@@ -671,6 +686,8 @@ EventKind Engine<D>::process_next() {
         return EventKind::Stale;
       }
       j = promote(r);
+      if (rest_.slots() - rest_.resting() >= compact_at_) [[unlikely]]
+        compact_store();
     }
   }
   // The partner's records are needed only after i's search, but are requested now.

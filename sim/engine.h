@@ -171,6 +171,8 @@ class Engine final : public Simulation {
   bool partner_changed(std::int32_t i) const;
   // The record of resting slot r's particle, made now.
   std::int32_t promote(std::int32_t r);
+  // Drops the store's dead slots (RestingStore::compact) and renames the slots predictions name.
+  void compact_store();
   void predict(std::int32_t i);
   void predict_from(std::int32_t i, const Neighbours& nb);
   void predict_crossing(std::int32_t i, const Vec<D>& xi);
@@ -269,6 +271,11 @@ class Engine final : public Simulation {
   static constexpr bool kRests = D > 1;
   bool rests_ = false;
   RestingStore<D> rest_;
+  // The store is compacted when it holds as many dead slots as there were records after the last
+  // compaction (at least kCompactAt): a pass over the store per doubling of the records, and the
+  // dead slots never more than one per record.
+  static constexpr std::int64_t kCompactAt = 1024;
+  std::int64_t compact_at_ = kCompactAt;
 
   // The unbounded medium (none in a box): its generator, the cells made so far in the order they
   // were made (what a checkpoint keeps of the grid), a cell's new particles, and the most

@@ -7,7 +7,8 @@
 // A particle leaves the store when something first collides with it (Engine::promote) and its
 // slot is left dead: a NaN first coordinate, which makes every contact test with it false
 // without a branch (sim/collision.h will_touch) and tells a prediction made while it rested that
-// it has been hit since.
+// it has been hit since. The engine compacts the store as records accumulate (compact()), so that
+// a moving particle does not go on paying for the slot it left.
 //
 // The particles are sorted by cell in cell order (sim/cell_grid.h): a cell's run starts at its
 // block's base (one per 64 cells) plus a 15-bit offset, and ends where the next cell's starts,
@@ -16,6 +17,7 @@
 // as empty, so that searches inside a blast skip it. Only a box's kicks keep a store: the
 // unbounded medium makes its particles just ahead of the front, where they are about to be hit,
 // and makes them records at once (sim/engine.h).
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -139,8 +141,34 @@ class RestingStore {
   // Marks slot r (in `cell`) dead: its particle has left.
   void leave(std::int32_t r, std::int32_t cell);
 
+  // A slot's number after compact(): a live slot's place among the live ones, which keep their
+  // order; a dead slot's, the one dead slot kept at the end, so that a prediction made while its
+  // particle rested still finds it gone.
+  class Renaming {
+   public:
+    std::int32_t operator()(std::int32_t old) const {
+      const auto r = static_cast<std::size_t>(old);
+      return (live_[r / 64] >> (r % 64)) & 1 ? before(r) : gone_;
+    }
+
+   private:
+    friend class RestingStore;
+    std::int32_t before(std::size_t r) const {  // live slots below r
+      if (r / 64 == live_.size()) return gone_;
+      const std::uint64_t below = live_[r / 64] & ((std::uint64_t{1} << (r % 64)) - 1);
+      return static_cast<std::int32_t>(count_[r / 64] + std::popcount(below));
+    }
+    std::vector<std::uint64_t> live_;   // a bit a slot
+    std::vector<std::uint32_t> count_;  // live slots before each word
+    std::int32_t gone_ = 0;
+  };
+  // Drops the dead slots and gives their memory back to the system: the 28 B (3D) a record's
+  // slot held.
+  Renaming compact();
+
   void save(StateWriter& out) const;
-  void load(StateReader& in);  // into a store made for the same grid
+  // Into a store made for the same grid, of a state of `particles` (tags below it).
+  void load(StateReader& in, std::int64_t particles);
 
  private:
   static constexpr std::size_t kBlock = CellRuns::kBlock;

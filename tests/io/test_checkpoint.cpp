@@ -43,14 +43,17 @@ std::unique_ptr<Simulation> load(const PhysicsConfig& c, const fs::path& file) {
 
 using test::expect_same_history;
 
+// Saved after the resting store's first compaction (at 1024 dead slots, Engine::kCompactAt): the
+// checkpoint holds the compacted store and the predictions' renamed slots.
 TEST(Checkpoint, KickContinuesTheSameHistory2DAnd3D) {
   for (int dim : {2, 3}) {
     PhysicsConfig c;
     c.dim = dim;
-    c.particles = 4000;
-    c.restitution = 0.5;
+    c.particles = 20000;
+    c.restitution = 0.8;
     auto a = make_simulation(c);
-    a->run_until(200);
+    a->run_until(dim == 2 ? 2500 : 400);
+    ASSERT_GT(a->sample().active, 1100) << "saved after a compaction";
     const fs::path file = scratch("kick" + std::to_string(dim) + ".bin");
     save(*a, file);
     auto b = load(c, file);

@@ -140,6 +140,49 @@ TEST(RestingStore, ABoxStoreHoldsEveryParticleInItsCellsRunUntilItLeaves) {
   EXPECT_EQ(store.resting(), 400 - (run.end - run.begin));
 }
 
+// Compaction drops the dead slots and keeps the live ones in their cells' runs, in their order,
+// and renames a dead slot to one that reads as dead.
+TEST(RestingStore, CompactionKeepsTheLiveSlotsInTheirRunsAndOrder) {
+  const CellGrid<3> grid(20.3);
+  RestingStore<3> store(random_points<3>(2000, grid.box(), 5), grid);
+  const auto cell_of = [&](std::int32_t r) {
+    return grid.index(grid.coords_of(store.position(r)));
+  };
+  Rng rng(9, 0, Stream::Positions);
+  std::vector<std::int32_t> live_tags;
+  std::vector<bool> left(2000, false);
+  for (std::int32_t r = 0; r < store.slots(); ++r) {
+    if (rng.uniform() < 0.6) {
+      left[r] = true;
+      store.leave(r, cell_of(r));
+    } else {
+      live_tags.push_back(store.tag(r));
+    }
+  }
+  std::vector<Vec<3>> old_position(2000);
+  for (std::int32_t r = 0; r < 2000; ++r) old_position[r] = store.position(r);
+  const auto rename = store.compact();
+  ASSERT_EQ(store.resting(), static_cast<std::int64_t>(live_tags.size()));
+  ASSERT_EQ(store.slots(), store.resting() + 1);  // and the dead slot kept
+  for (std::int32_t r = 0; r < store.resting(); ++r) {
+    EXPECT_EQ(store.tag(r), live_tags[r]);  // in their order
+    const auto run = store.run(cell_of(r));
+    EXPECT_TRUE(run.begin <= r && r < run.end);
+  }
+  std::int32_t in_runs = 0;
+  for (std::int32_t c = 0; c < static_cast<std::int32_t>(grid.cell_count()); ++c)
+    in_runs += store.run(c).end - store.run(c).begin;
+  EXPECT_EQ(in_runs, store.resting());
+  for (std::int32_t r = 0; r < 2000; ++r) {
+    if (left[r]) {
+      EXPECT_TRUE(store.dead(rename(r)));
+    } else {
+      EXPECT_FALSE(store.dead(rename(r)));
+      EXPECT_EQ(store.position(rename(r)), old_position[r]);
+    }
+  }
+}
+
 // The resting store changes where a kick's particles live, not what they do: the same state
 // started with every particle an engine record (as a thermal start is) gives the same history
 // to the bit, event by event, with every position and every count.
@@ -158,6 +201,8 @@ void expect_same_history_with_and_without_store(int events) {
   Engine<D> stored(c, std::move(kick)), plain(c, std::move(records));
   test::expect_same_history(stored, plain, events);
   EXPECT_GT(stored.stats().collisions, 5000);
+  // Past the first compaction of the store (at 1024 dead slots, Engine::kCompactAt).
+  EXPECT_GT(stored.sample().active, 1100);
   EXPECT_EQ(stored.max_overlap_now(), plain.max_overlap_now());
 }
 
