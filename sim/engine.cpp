@@ -33,6 +33,7 @@ Engine<D>::Engine(const PhysicsConfig& c, InitialState<D> init)
       rest_ = RestingStore<D>(std::move(init.position), grid_);
       init = InitialState<D>{};
       rests_ = true;
+      compact_at_ = next_compaction();
       std::int32_t r = 0;
       while (rest_.tag(r) != kicked) ++r;
       const std::int32_t i = promote(r);
@@ -161,7 +162,7 @@ void Engine<D>::compact_store() {
     const auto rename = rest_.compact();
     for (Prediction& p : pred_)
       if (p.partner < -1) p.partner = resting_partner(rename(-2 - p.partner));
-    compact_at_ = std::max<std::int64_t>(kCompactAt, moving());
+    compact_at_ = next_compaction();
   }
 }
 

@@ -19,6 +19,7 @@
 // reserved up front for the most particles the run may make (--particles) and grown into, so the
 // hot loop never reallocates; the cell heads are zero pages until their cell is made.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <type_traits>
@@ -272,10 +273,14 @@ class Engine final : public Simulation {
   bool rests_ = false;
   RestingStore<D> rest_;
   // The store is compacted when it holds as many dead slots as there were records after the last
-  // compaction (at least kCompactAt): a pass over the store per doubling of the records, and the
-  // dead slots never more than one per record.
+  // compaction, and at least a 64th of its slots: a pass over the store per doubling of the
+  // records, which costs each new record at most 64 slots' moves (particles at rest cost
+  // nothing), and never more dead slots than records once a 64th of the particles have moved.
   static constexpr std::int64_t kCompactAt = 1024;
-  std::int64_t compact_at_ = kCompactAt;
+  std::int64_t compact_at_ = 0;
+  std::int64_t next_compaction() const {
+    return std::max({kCompactAt, std::int64_t{moving()}, std::int64_t{rest_.slots()} / 64});
+  }
 
   // The unbounded medium (none in a box): its generator, the cells made so far in the order they
   // were made (what a checkpoint keeps of the grid), a cell's new particles, and the most
