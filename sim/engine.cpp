@@ -319,11 +319,16 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
       rest_ = RestingStore<D>(grid_);
       rest_.load(in, c.particles);
       in.value(compact_at_);
+      in.expect(compact_at_ > 0);
     }
   }
   in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && pred_.size() == m &&
             first_collision_.size() == m && moved_.size() <= m && (!rests_ || moved_.empty()) &&
             queue_.particles() == m);
+  // A partner is a record, none, or (where particles rest) a slot of the store.
+  const std::int64_t slots = rests_ ? rest_.slots() : 0;
+  for (const Prediction& p : pred_)
+    in.expect(p.partner < static_cast<std::int64_t>(m) && -2 - std::int64_t{p.partner} < slots);
   if (c.unbounded()) {
     take_memory(m);
   } else {
