@@ -17,7 +17,13 @@ RestingStore<D>::RestingStore(VecArray<D>&& x, const CellGrid<D>& grid)
       tag_);
   base_ = std::move(t.base);
   offset_ = std::move(t.offset);
-  const std::size_t cells = grid.cell_count();
+  mark_live_cells();
+}
+
+// Runs hold no flags yet: every cell with a slot is flagged kLive.
+template <int D>
+void RestingStore<D>::mark_live_cells() {
+  const std::size_t cells = offset_.size() - 1;
   for (std::size_t c = 0; c < cells; ++c)
     if (base_[c / kBlock] + offset_[c] < base_[(c + 1) / kBlock] + offset_[c + 1])
       offset_[c] |= kLive;
@@ -77,9 +83,7 @@ typename RestingStore<D>::Renaming RestingStore<D>::compact() {
     }
     base_[b] = new_base;
   }
-  for (std::size_t c = 0; c < cells; ++c)
-    if (base_[c / kBlock] + offset_[c] < base_[(c + 1) / kBlock] + offset_[c + 1])
-      offset_[c] |= kLive;
+  mark_live_cells();
   std::size_t k = 0;
   for (std::size_t r = 0; r < n; ++r) {
     if (dead(static_cast<std::int32_t>(r))) continue;

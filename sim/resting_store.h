@@ -173,6 +173,7 @@ class RestingStore {
  private:
   static constexpr std::size_t kBlock = CellRuns::kBlock;
   static constexpr std::uint16_t kLive = 0x8000;  // the cell still holds a resting particle
+  void mark_live_cells();
 
   VecArray<D> x_;
   std::int64_t resting_ = 0;
