@@ -44,8 +44,8 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
                "16 realisations each): about 25 min on 2 cores; see --long --estimate");
   sub.add_flag("--limit", o.limit,
                "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
-               "medium until E_t's local slope plateaus (3D to t = 6.5e6): 1-2.5 days on 2 "
-               "cores, nearly all of it 3D r = 0.95; see --limit --estimate");
+               "medium until E_t's local slope plateaus (3D r = 0.95 only to t = 4e5, E_0/20); "
+               "see --limit --estimate for its time on 2 cores");
   sub.add_option("--limit-dim", o.limit_dim,
                  "With --limit, only the cases of this dimension (2: about 1.2 h on 2 cores)");
   sub.add_flag("--tiny", flags.tiny,

@@ -125,9 +125,14 @@ std::vector<Long3D> long3d_cases() {
 //    measured before. t_max 1.2e6, 0.53 decade past it.
 //  - 2D r = 0.9: plateaus by ~5e4-1e5 (N_t's and E_t's slopes of --full); from 1e5, t_max 4e5.
 //  - r = 0.95: the start of r = 0.9 times ((1 - 0.95^2) / (1 - 0.9^2))^-phi1 = 0.513^-phi1, with
-//    phi1 = 2.5 in 3D (x5.3: 1.9e6; phi1 = 3 would give x7.4, 2.6e6 from the same r = 0.9 start)
-//    and 2.25 in 2D (x4.5: 4.5e5). 3D t_max 6.5e6 (0.53 decade; 0.4 decade past the phi1 = 3
-//    start), 2D 1.6e6 (0.55 decade).
+//    phi1 = 2.25 in 2D (x4.5: 4.5e5); 2D t_max 1.6e6 (0.55 decade). In 3D (phi1 = 2.5: x5.3,
+//    1.9e6) the plateau would need t_max 6.5e6: 2.6e4 CPU-s a realisation, one at a time (5e7
+//    made, 21 GB), 2.4 days for 8 on this machine. 3D r = 0.95 therefore runs to 4e5 and not
+//    to its plateau: it gives the readings that need no plateau (analysis/energy_scaling.h), the
+//    declared E_t/E_0 collapse and the time to E_0/10, and none by the intersection rule. The
+//    3D r = 0.9 realisations of --limit fall to E_0/10 at 1.6e4 and E_0/20 at 5.3e4 (two
+//    realisations' mean), so by 4e5 r = 0.95 is at E_0/20 if phi1 <= 3 (x7.4: 3.9e5) and past
+//    E_0/10 if phi1 <= 4.3: the collapse spans a decade of E_t.
 // Cutoffs: t_c2 ~ delta^-(1/(1-alpha)) must stay far beyond t_max. 2D 1e-6: t_c2 ~ 2.5e8 by the
 // delta scan (2.2e4 (5e-4 / delta)^1.5), 150 times 1.6e6; 3D 1e-7: at 1e-4 E_t's slope turns up
 // from ~3e4 at r = 0.7, so ~3e4 x 1000^(4/3) = 3e8 at 1e-7, where 1e-6 (1.4e7) would come
@@ -137,10 +142,9 @@ std::vector<Long3D> long3d_cases() {
 // 8.2e5 active spheres, R_rms 83 (R ~ t^0.29 over 5e4-1e5) and 8.7e5 made (peak RSS 615 MB with
 // an XYZ snapshot written); made ~ R^3 extrapolates to ~8e6 at 1.2e6. 3D r = 0.95 spreads
 // further: R_rms 99.6 and 1.56e6 made at 1e5 (R ~ t^0.32 over 5.6e4-1e5; peak RSS 951 MB) and,
-// with R ~ t^0.27-0.29 after, 310-340 at 6.5e6, i.e. 4.6-5.9e7 made. Caps: 2.5e7 for 3D r = 0.9,
-// two realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
-// with a snapshot); 5e7 for 3D r = 0.95, one realisation at a time (21 GB), at the edge of what
-// it needs. 2D: 2e6 (R ~
+// with R ~ t^0.27-0.29 after, 145-150 at 4e5, i.e. 5e6 made. Caps: 2.5e7 for 3D, two
+// realisations at once in 21 GB by the engine's estimate (estimated_bytes: ~425 B per particle
+// with a snapshot). 2D: 2e6 (R ~
 // t^(1/3)-t^0.4: r = 0.95 has R_rms 280 and 7.7e4 active at 1.4e5, so ~6e5 made at 1.6e6).
 // Realisations: t_c1's interval comes from resampling realisations (200 draws, percentiles), and
 // a percentile interval over M realisations is set by single realisations below M ~ 8 (8 gives
@@ -178,7 +182,7 @@ std::vector<LimitCase> limit_cases(FiguresMode m) {
   return {{2, 0.9, 2000000, 1e5, 4e5, 32, 0, 1.0 / 3},
           {2, 0.95, 2000000, 4.5e5, 1.6e6, 24, 0, 1.0 / 3},
           {3, 0.9, 25000000, 3.5e5, 1.2e6, 12},
-          {3, 0.95, 50000000, 1.9e6, 6.5e6, 8, 1}};
+          {3, 0.95, 25000000, 0, 4e5, 8}};  // plateau_start 0: not run to its plateau
 }
 constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
 

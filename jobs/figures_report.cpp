@@ -54,8 +54,9 @@ std::string local_phi1_markdown(const Crossovers& crossovers) {
         "rule), with 95% bootstrap intervals. phi1 is defined by the divergence as r -> 1: a "
         "drift along the rows means that the fit over all r mixes regimes, and the last row is "
         "the estimate nearest the elastic limit. With `--limit`, r = 0.9 and 0.95 come from the "
-        "*_limit cases (the unbounded medium, run until E_t's local slope plateaus), here and in "
-        "the energy readings below.\n\n"
+        "*_limit cases (the unbounded medium, run until E_t's local slope plateaus, but 3D "
+        "r = 0.95 only to t = 4e5, about E_0/20: it has no t_c1 here, only the energy readings "
+        "below).\n\n"
         "| d | between | phi1 | 95% interval |\n|---|---|---|---|\n";
   for (const auto& set : crossovers.tc1)
     for (const auto& e : set.local)
