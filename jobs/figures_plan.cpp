@@ -158,12 +158,14 @@ std::vector<Long3D> long3d_cases() {
 // CPU-s per realisation to 1.6e6, 2.35e8 collisions, peak RSS 272 MB, at load 5-8, where 92
 // were estimated; r = 0.9: 17.4 CPU-s to 4e5, 2.2e7 collisions). A third of t_max costs a 2D
 // sample about a sixth of a realisation.
-// `figures --limit --estimate` (sample 2, load ~3.4): 2.24e5 CPU-s, 60 h on a quiet 2-core
-// machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per realisation, one at a time; the sample
-// to 2.17e5 took 358 per realisation, its collisions growing as t^1.26), 3D r = 0.9 1.5e4, 2D
-// 2.5e3, the --quick cases 230. With the inelastic regime's constant collision rate (g = 1)
-// instead of the sample's end: 9.4e4 CPU-s, ~25 h. Checked: one 3D r = 0.9 realisation to 3.5e5
-// (bench sim/kick3d_r0.9_plateau) took 272 CPU-s, 275 extrapolated from this sample's 17.5 at 4e4.
+// `figures --limit --estimate` (sample 2, load ~3.4), with 3D r = 0.95 to its plateau at 6.5e6:
+// 2.24e5 CPU-s, 60 h on a quiet 2-core machine, of which 3D r = 0.95 2.06e5 (2.6e4 CPU-s per
+// realisation, one at a time; the sample to 2.17e5 took 358 per realisation, its collisions
+// growing as t^1.26), 3D r = 0.9 1.5e4, 2D 2.5e3, the --quick cases 230. With r = 0.95 to 4e5
+// (`--limit --limit-dim 3 --estimate --sample 2`, load ~2): 1.79e4 CPU-s, 2.5 h quiet, of which
+// 3D r = 0.9 1.23e4 (1023 a realisation) and 3D r = 0.95 5.4e3 (681 a realisation, two at
+// once). Checked: one 3D r = 0.9 realisation to 3.5e5 (bench sim/kick3d_r0.9_plateau) took
+// 272 CPU-s, 275 extrapolated from a sample's 17.5 at 4e4.
 struct LimitCase {
   int d;
   double r;
