@@ -34,7 +34,8 @@ struct FigureCase {
   bool superseded_for_alpha = false;
   // Limit: the time from which E_t's local slope is expected to be on its plateau (the plan's
   // comment says where each comes from); t_max lies at least half a decade past it, the span
-  // the plateau rule needs (analysis/effective_exponent.h).
+  // the plateau rule needs (analysis/effective_exponent.h). 0: not run to its plateau (3D
+  // r = 0.95, whose plateau would take 2.4 days, and --tiny's smoke cases).
   double plateau_start = 0;
   // The time --estimate's sample runs to (0: t_max); its cost is extrapolated to t_max from the
   // growth of the collisions at the sample's end (jobs/figures_job.cpp).
