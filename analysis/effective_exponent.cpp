@@ -96,6 +96,18 @@ std::vector<double> prefix_of(const std::vector<double>& s, const std::vector<bo
   return p;
 }
 
+// The z of m two-sided tests whose joint level is that of one test at z: P(|N| > z_m) = P(|N| > z)
+// / m, solved by bisection (erfc is monotone).
+double bonferroni_z(double z, std::size_t m) {
+  const double tail = std::erfc(z / std::numbers::sqrt2) / double(m);
+  double lo = z, hi = z + 10;
+  for (int k = 0; k < 100; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::numbers::sqrt2) > tail ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double spread(std::span<const double> v) {
   if (v.size() < 2) return 0;
   double m = 0;
@@ -127,7 +139,9 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
   const double need = o.min_decades * std::numbers::ln10 * (1 - 1e-9);
 
   struct Verdict {
-    double drift, drift_error, curvature, curvature_error, excess;
+    double drift, drift_error, curvature, curvature_error;
+    double piece = 0, piece_error = 0;  // the piece whose mean lies farthest out, see below
+    double excess;
   };
   std::vector<double> dd(draw_prefix.size()), kk(draw_prefix.size());
   auto judge = [&](const Thirds& w) {
@@ -142,6 +156,39 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     v.curvature_error = spread(kk);
     v.excess = std::max(std::fabs(v.drift) - (o.z * v.drift_error + o.floor),
                         std::fabs(v.curvature) - (o.z * v.curvature_error + o.floor));
+    // Thirds average a wave of about a third's length away: a window of four decades whose slope
+    // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95, issue 31). So the window is
+    // also cut into pieces of min_decades or more, and each piece's mean must lie within
+    // z_m sigma + floor of the window's, z_m the two-sided normal quantile at the level of z
+    // shared by the m pieces (Bonferroni), so that a flat slope's window fails no more often
+    // than by the thirds' test alone.
+    const auto m = std::max<std::size_t>(3, std::size_t((x[w.b] - x[w.a]) / need));
+    if (m > 3) {
+      const double zm = bonferroni_z(o.z, m);
+      for (std::size_t j = 0; j < m; ++j) {
+        const auto at = [&](std::size_t q) {
+          const double c = x[w.a] + (x[w.b] - x[w.a]) * double(q) / double(m);
+          return q == m ? w.b + 1
+                        : std::size_t(std::lower_bound(x.begin() + long(w.a),
+                                                       x.begin() + long(w.b) + 1, c) -
+                                      x.begin());
+        };
+        const std::size_t lo = at(j), hi = at(j + 1);
+        if (hi <= lo) continue;  // no sample in the piece: the grid is coarser than it
+        const auto deviation = [&](const std::vector<double>& prefix) {
+          return Thirds::mean(prefix, lo, hi) - Thirds::mean(prefix, w.a, w.b + 1);
+        };
+        const double dev = deviation(mean_prefix);
+        for (std::size_t k = 0; k < draw_prefix.size(); ++k) dd[k] = deviation(draw_prefix[k]);
+        const double err = spread(dd);
+        const double excess = std::fabs(dev) - (zm * err + o.floor);
+        if (excess > v.excess) {
+          v.excess = excess;
+          v.piece = dev;
+          v.piece_error = err;
+        }
+      }
+    }
     return v;
   };
 
@@ -207,13 +254,16 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
   } else {
     p.note = "no plateau within the run: the local slope goes from " +
              short_text(band.slope[first]) + " at t = " + short_text(t[first]) + " to " +
-             short_text(band.slope[last]) + " at t = " + short_text(t[last]) +
-             "; no window of " + short_text(o.min_decades) +
-             " decades or more has a drift within its error (closest: [" +
+             short_text(band.slope[last]) + " at t = " + short_text(t[last]) + "; no window of " +
+             short_text(o.min_decades) + " decades or more is flat within its error (closest: [" +
              short_text(closest_window.t_lo) + ", " + short_text(closest_window.t_hi) +
              "], drift " + short_text(closest.drift) + " +- " + short_text(closest.drift_error) +
              ", curvature " + short_text(closest.curvature) + " +- " +
-             short_text(closest.curvature_error) + ")";
+             short_text(closest.curvature_error) +
+             (closest.piece_error > 0 ? ", a piece off the mean by " + short_text(closest.piece) +
+                                            " +- " + short_text(closest.piece_error)
+                                      : std::string()) +
+             ")";
   }
   return p;
 }

@@ -14,7 +14,10 @@
 // realisations (the same resamples as the band, so the correlation of neighbouring slopes and of
 // the thirds is in them). The window is a plateau when |D| <= z sigma_D + floor and
 // |K| <= z sigma_K + floor (z = 2, ~95%; floor = 1e-3 only absorbs the rounding of exact
-// series; it is not a tolerance). A slope that drifts, however slowly, is therefore rejected as
+// series; it is not a tolerance), and, in a window longer than 3 min_decades, when each of its
+// m = floor(span / min_decades) equal pieces has a mean slope within z_m sigma + floor of the
+// window's (z_m: z shared by m tests, Bonferroni), so that a swing of the slope that the thirds
+// average away is seen too. A slope that drifts, however slowly, is therefore rejected as
 // soon as the data resolve the drift: more realisations make the rule stricter, not looser.
 // With one realisation there is no error and only a drift below the floor passes.
 // The plateau is the window ending latest (the asymptotic regime is the late one), extended as

@@ -174,6 +174,27 @@ TEST(EffectiveExponent, SlopeThatDipsAndRecoversIsNoPlateauAcrossTheDip) {
   EXPECT_NEAR(p.exponent, 0.7, 0.01);
 }
 
+TEST(EffectiveExponent, SlopeThatSwingsAcrossTheWindowIsNoPlateau) {
+  // The 3D R_t of --limit's r = 0.95 (issue 31): over four decades the slope swings by +-0.025
+  // about 0.3, a period of 4/3 decade, so that the thirds of the whole window have equal means
+  // (no drift, no curvature) while the band is +-0.005. No window spanning a full swing is flat.
+  const double period = 4.0 / 3.0 * std::log(10.0), amplitude = 0.025;
+  const auto t = log_grid(1, 1e4, 20);
+  const auto x = ensemble_of(
+      t,
+      [&](double s) {
+        const double u = std::log(s);
+        return std::exp(0.3 * u - amplitude * period / (2 * kPi) * std::cos(2 * kPi * u / period));
+      },
+      8, 16, 0.005);
+  const Plateau p = find_plateau(local_slope_band(t, x));
+  if (p.found)
+    EXPECT_LT(std::log(p.window.t_hi / p.window.t_lo), period)
+        << "[" << p.window.t_lo << ", " << p.window.t_hi << "]";
+  else
+    EXPECT_NE(p.note.find("a piece off the mean"), std::string::npos) << p.note;
+}
+
 TEST(EffectiveExponent, CorrectionToScalingRecoversTheAsymptoticExponent) {
   // X = t^b (1 + c t^-omega): over [1e2, 1e4] the local slope is still c omega t^-omega ~ 0.03
   // to 0.003 short of b (the 2D E_t of issue 33); the fit with the correction term finds b.
