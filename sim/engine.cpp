@@ -116,7 +116,7 @@ void Engine<D>::reserve_particles(std::size_t n) {
   capacity_ = n;
   kin_.reserve(n);
   tag_.reserve(n);
-  image_.reserve(n);
+  image_ = ZeroPages<Image>(n, Touch::Sparse);
   next_.reserve(n);
   pred_.reserve(n);
   first_collision_.reserve(n);
@@ -131,7 +131,6 @@ std::int32_t Engine<D>::add_record(const Vec<D>& x, const Vec<D>& v, std::int32_
   const auto i = static_cast<std::int32_t>(kin_.size());
   kin_.push_back({x, 0.0, v, 0});
   tag_.push_back(tag);
-  image_.push_back(IVec<D>::Zero());
   next_.push_back(-1);
   pred_.push_back(Prediction{});
   first_collision_.push_back(-1.0);
@@ -237,6 +236,27 @@ void load_heads(StateReader& in, ZeroPages<std::int32_t>& head, std::int32_t off
   }
 }
 
+// The records' images as the vector of them that the stream held when they were one (the format
+// is unchanged); loading writes only the non-zero ones, so that a resumed kick's images stay
+// untouched zero pages.
+template <class Image>
+void save_images(StateWriter& out, const Image* image, std::size_t m) {
+  out.value(static_cast<std::uint64_t>(m));
+  out.bytes(image, m * sizeof(Image));
+}
+
+template <class Image>
+void load_images(StateReader& in, Image* image, std::size_t m) {
+  in.expect(in.value<std::uint64_t>() == m);
+  Image chunk[1024];
+  for (std::size_t at = 0; at < m; at += std::size(chunk)) {
+    const std::size_t n = std::min(std::size(chunk), m - at);
+    in.bytes(chunk, n * sizeof(Image));
+    for (std::size_t k = 0; k < n; ++k)
+      if (chunk[k] != Image{}) image[at + k] = chunk[k];
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -246,7 +266,7 @@ void Engine<D>::save(StateWriter& out) const {
   out.value(stats_);
   out.vector(kin_);
   out.vector(tag_);
-  out.vector(image_);
+  save_images(out, image_.data(), kin_.size());
   if (medium_) {
     // The made cells and their heads: the rest of the grid is zero pages.
     std::vector<std::int32_t> heads(made_.size());
@@ -285,7 +305,7 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
   in.expect(kin_.size() <= cap);
   const std::size_t m = kin_.size();
   in.vector(tag_);
-  in.vector(image_);
+  load_images(in, image_.data(), m);
   if (c.unbounded()) {
     GS_CHECK(D > 1);
     head_offset_ = 2;
@@ -322,7 +342,7 @@ Engine<D>::Engine(const PhysicsConfig& c, StateReader& in)
       in.expect(compact_at_ > 0);
     }
   }
-  in.expect(tag_.size() == m && image_.size() == m && next_.size() == m && pred_.size() == m &&
+  in.expect(tag_.size() == m && next_.size() == m && pred_.size() == m &&
             first_collision_.size() == m && moved_.size() <= m && (!rests_ || moved_.empty()) &&
             queue_.particles() == m);
   // A partner is a record, none, or (where particles rest) a slot of the store.

@@ -20,6 +20,7 @@
 // hot loop never reallocates; the cell heads are zero pages until their cell is made.
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <type_traits>
@@ -216,7 +217,12 @@ class Engine final : public Simulation {
   };
   HugeVector<Kinematics> kin_;
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
-  std::vector<IVec<D>> image_;
+  // Box crossings per record, for every record the engine may hold, in zero pages: a kick's
+  // front never reaches the box's edge (and the unbounded medium has none), so its images are
+  // never written and cost nothing (12 B a moving sphere, issue 31 part 2); a thermal gas
+  // touches them as its particles wrap.
+  using Image = std::array<std::int32_t, D>;
+  ZeroPages<Image> image_;
 
   // The records of each cell as singly linked lists, apart from the particle data: a search walks
   // them without waiting for each particle's cache line. A cell's head holds its first record
