@@ -140,7 +140,8 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
 
   struct Verdict {
     double drift, drift_error, curvature, curvature_error;
-    double piece = 0, piece_error = 0;  // the piece whose mean lies farthest out, see below
+    bool piece_worst = false;  // a piece's mean (see below) fails by most: it and its error
+    double piece = 0, piece_error = 0;
     double excess;
   };
   std::vector<double> dd(draw_prefix.size()), kk(draw_prefix.size());
@@ -160,8 +161,8 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95, issue 31). So the window is
     // also cut into pieces of min_decades or more, and each piece's mean must lie within
     // z_m sigma + floor of the window's, z_m the two-sided normal quantile at the level of z
-    // shared by the m pieces (Bonferroni), so that a flat slope's window fails no more often
-    // than by the thirds' test alone.
+    // shared by the m pieces (Bonferroni), so that the m of them together reject a flat slope's
+    // window no more often than one test at z does.
     const auto m = std::max<std::size_t>(3, std::size_t((x[w.b] - x[w.a]) / need));
     if (m > 3) {
       const double zm = bonferroni_z(o.z, m);
@@ -184,6 +185,7 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
         const double excess = std::fabs(dev) - (zm * err + o.floor);
         if (excess > v.excess) {
           v.excess = excess;
+          v.piece_worst = true;
           v.piece = dev;
           v.piece_error = err;
         }
@@ -260,7 +262,7 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
              "], drift " + short_text(closest.drift) + " +- " + short_text(closest.drift_error) +
              ", curvature " + short_text(closest.curvature) + " +- " +
              short_text(closest.curvature_error) +
-             (closest.piece_error > 0 ? ", a piece off the mean by " + short_text(closest.piece) +
+             (closest.piece_worst ? ", a piece off the mean by " + short_text(closest.piece) +
                                             " +- " + short_text(closest.piece_error)
                                       : std::string()) +
              ")";
