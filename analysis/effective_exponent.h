@@ -14,7 +14,7 @@
 // realisations (the same resamples as the band, so the correlation of neighbouring slopes and of
 // the thirds is in them). The window is a plateau when |D| <= z sigma_D + floor and
 // |K| <= z sigma_K + floor (z = 2, ~95%; floor = 1e-3 only absorbs the rounding of exact
-// series; it is not a tolerance), and, in a window longer than 3 min_decades, when each of its
+// series; it is not a tolerance), and, in a window of 4 min_decades or more, when each of its
 // m = floor(span / min_decades) equal pieces has a mean slope within z_m sigma + floor of the
 // window's (z_m: z shared by m tests, Bonferroni), so that a swing of the slope that the thirds
 // average away is seen too. A slope that drifts, however slowly, is therefore rejected as

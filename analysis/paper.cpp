@@ -542,7 +542,7 @@ std::string definitions_markdown() {
        "the first, its curvature K that of the middle third minus the mean of the outer two; "
        "the window is a plateau when |D| and |K| are each within 2 standard deviations of their "
        "values over 200 bootstrap resamples of the realisations (+ 1e-3 for rounding; no "
-       "tolerance), and, in a window of over 1.5 decades, when each of its m equal pieces of "
+       "tolerance), and, in a window of 2 decades or more, when each of its m equal pieces of "
        ">= 0.5 decades has a mean slope within z_m standard deviations of the window's (z_m "
        "the two-sided quantile of 2 sigma's level shared by the m pieces, Bonferroni), so that "
        "a swing of the slope that the thirds average away is not taken for a plateau. The "
