@@ -145,6 +145,13 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     double excess;
   };
   std::vector<double> dd(draw_prefix.size()), kk(draw_prefix.size());
+  // z_m of the pieces' test below, for every m a window of usable samples can have.
+  double x_lo = INFINITY, x_hi = -INFINITY;
+  for (std::size_t i = 0; i < n; ++i)
+    if (usable[i]) x_lo = std::min(x_lo, x[i]), x_hi = std::max(x_hi, x[i]);
+  std::vector<double> z_of_pieces;
+  for (std::size_t m = 0; x_lo < x_hi && m <= std::size_t((x_hi - x_lo) / need); ++m)
+    z_of_pieces.push_back(m > 3 ? bonferroni_z(o.z, m) : o.z);
   auto judge = [&](const Thirds& w) {
     Verdict v{};
     v.drift = w.drift(mean_prefix);
@@ -165,16 +172,14 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     // window no more often than one test at z does.
     const auto m = std::max<std::size_t>(3, std::size_t((x[w.b] - x[w.a]) / need));
     if (m > 3) {
-      const double zm = bonferroni_z(o.z, m);
-      for (std::size_t j = 0; j < m; ++j) {
-        const auto at = [&](std::size_t q) {
-          const double c = x[w.a] + (x[w.b] - x[w.a]) * double(q) / double(m);
-          return q == m ? w.b + 1
-                        : std::size_t(std::lower_bound(x.begin() + long(w.a),
-                                                       x.begin() + long(w.b) + 1, c) -
+      const double zm = z_of_pieces[m];
+      // Piece j holds the samples [lo, hi); the last ends with the window.
+      for (std::size_t j = 0, lo = w.a, hi; j < m; ++j, lo = hi) {
+        const double end = x[w.a] + (x[w.b] - x[w.a]) * double(j + 1) / double(m);
+        hi = j + 1 == m ? w.b + 1
+                        : std::size_t(std::lower_bound(x.begin() + long(lo),
+                                                       x.begin() + long(w.b) + 1, end) -
                                       x.begin());
-        };
-        const std::size_t lo = at(j), hi = at(j + 1);
         if (hi <= lo) continue;  // no sample in the piece: the grid is coarser than it
         const auto deviation = [&](const std::vector<double>& prefix) {
           return Thirds::mean(prefix, lo, hi) - Thirds::mean(prefix, w.a, w.b + 1);
