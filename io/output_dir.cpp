@@ -24,15 +24,21 @@ std::filesystem::path prepare_output_dir(const std::string& dir, bool force,
     if (!fs::is_empty(p, ec) && !force)
       throw UserError("--out " + dir +
                       ": folder exists and is not empty (use --force to write into it)");
-    if (!replaced.empty()) lock_output_dir(p);  // not while another run is writing them
-    for (const char* name : replaced) {
-      fs::remove_all(p / name, ec);
-      if (ec)
-        throw UserError("--force: cannot remove '" + (p / name).string() + "': " + ec.message());
-    }
   } else {
     fs::create_directories(p, ec);
     if (ec) throw UserError("--out " + dir + ": cannot create folder: " + ec.message());
+  }
+  // Two commands given the same new folder may both have found it absent or empty: the first
+  // to lock it writes, and the second, once it holds the lock, finds the first one's files.
+  lock_output_dir(p);
+  if (!force && !fs::is_empty(p, ec))
+    throw UserError("--out " + dir +
+                    ": another grainshock process wrote into this folder meanwhile (use "
+                    "--force to write into it)");
+  for (const char* name : replaced) {
+    fs::remove_all(p / name, ec);
+    if (ec)
+      throw UserError("--force: cannot remove '" + (p / name).string() + "': " + ec.message());
   }
   return p;
 }

@@ -10,7 +10,9 @@ namespace gs {
 // Creates `dir` for a new run. An existing non-empty folder is refused unless `force`. With it,
 // the names in `replaced` (the files and folders the command writes) are removed first, so
 // that the folder never mixes two runs, even if the new one is killed early; anything else in
-// the folder is left alone.
+// the folder is left alone. The folder is locked (lock_output_dir) before anything in it is
+// removed or written, and refused if another process wrote into it between the check and the
+// lock.
 std::filesystem::path prepare_output_dir(const std::string& dir, bool force,
                                          std::span<const char* const> replaced = {});
 

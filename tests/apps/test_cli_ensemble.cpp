@@ -81,6 +81,38 @@ TEST(CliEnsemble, MergeOfSplitJobsEqualsTheOneShotEnsemble) {
   EXPECT_NE(read_file(whole / "timeseries_mean.csv"), read_file(part / "timeseries_mean.csv"));
 }
 
+// Two merges into one new folder started together: the first to lock the folder writes it, the
+// other is refused, whether it finds the lock held or the first one's files already there.
+TEST(CliEnsemble, TwoMergesIntoOneFolderDoNotBothSucceed) {
+  const auto a = scratch_dir("a"), out = scratch_dir("out");
+  ASSERT_EQ(
+      grainshock("ensemble " + kPhysics + " --realisations 2 --per-realisation --out " + a.string())
+          .exit_code,
+      0);
+  const std::string args = "merge --quiet " + a.string() + " --out " + out.string();
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    fs::remove_all(out);
+    const fs::path err[2] = {out.string() + ".err0", out.string() + ".err1"};
+    const pid_t pids[2] = {spawn_grainshock(args, err[0]), spawn_grainshock(args, err[1])};
+    int codes[2];
+    for (int k = 0; k < 2; ++k) {
+      int status = 0;
+      ASSERT_EQ(waitpid(pids[k], &status, 0), pids[k]);
+      ASSERT_TRUE(WIFEXITED(status));
+      codes[k] = WEXITSTATUS(status);
+    }
+    EXPECT_EQ((codes[0] == 0) + (codes[1] == 0), 1) << "attempt " << attempt;
+    const int loser = codes[0] == 0 ? 1 : 0;
+    EXPECT_EQ(codes[loser], 1);
+    const std::string message = read_file(err[loser]);
+    EXPECT_TRUE(message.find("in use by another grainshock process") != std::string::npos ||
+                message.find("another grainshock process wrote") != std::string::npos ||
+                message.find("not empty") != std::string::npos)
+        << message;
+    EXPECT_TRUE(fs::exists(out / "summary.json"));
+  }
+}
+
 TEST(CliEnsemble, DistributionsAreNormalisedAndSummaryHasTheFits) {
   const auto dir = scratch_dir("norm");
   auto r =
