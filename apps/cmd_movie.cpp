@@ -83,6 +83,9 @@ void add_movie_flags(CLI::App& sub, MovieJob& job) {
   sub.add_option("--crf", job.movie.movie.crf,
                  "H.264 quality, 0 (lossless) to 51; 18 looks lossless")
       ->capture_default_str();
+  sub.add_option("--keyint", job.movie.movie.keyint,
+                 "Frames between key frames; a killed movie goes on from the last one")
+      ->capture_default_str();
   sub.add_option("--width", job.movie.movie.width, "Frame width in pixels")->capture_default_str();
   sub.add_option("--height", job.movie.movie.height, "Frame height in pixels")
       ->capture_default_str();

@@ -40,8 +40,8 @@ void add_resume_command(CLI::App& app) {
   sub->footer(
       "The run goes on from its checkpoint with the settings of DIR/run.toml and ends with the "
       "same timeseries.csv, snapshots, pictures, movie and summary.json, byte for byte, as a "
-      "run that was never stopped. Refused, with nothing in DIR touched: a folder without a "
-      "checkpoint, a finished run, a run.toml that is not the checkpoint's, a checkpoint that "
+      "run that was never stopped; a run stopped in its set-up, before its first checkpoint, "
+      "starts again from t = 0. Refused, with nothing in DIR touched: a finished run, a run.toml that is not the checkpoint's, a checkpoint that "
       "is truncated, corrupt or from another version or build. An ensemble folder (with "
       "ensemble.toml) runs only its missing realisations, to the same files as an ensemble "
       "never stopped. A movie folder (with movie.toml) goes on from its checkpoint and ends "

@@ -1,17 +1,24 @@
 // Benchmarks of `grainshock run` around the engine (issue 20): the run loop with its samples,
 // timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole (issue 32).
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "analysis/json.h"
 #include "bench/bench.h"
 #include "io/checkpoint.h"
 #include "jobs/run_job.h"
 #include "jobs/run_loop.h"
+
+extern char** environ;
 
 namespace gs::bench {
 using jobs::RunLoop;
@@ -131,9 +138,51 @@ std::vector<Figure> fig1_job() {
       {"load_average_1min", load_average(), "", ""}};
 }
 
+// Peak resident bytes of the whole command `grainshock run --dim 3 --particles N --restitution
+// 0.5 --t-max 1 --medium box --snapshot-particles active`, as a user measures it (the child's
+// ru_maxrss from wait4, with the machine's huge-page setting); 0 if it failed.
+double run_command_peak(std::int64_t n) {
+  const fs::path dir = scratch("peak" + std::to_string(n));
+  fs::remove_all(dir);
+  std::vector<std::string> args = {"/proc/self/exe", "run", "--dim", "3", "--particles",
+                                   std::to_string(n), "--restitution", "0.5", "--t-max", "1",
+                                   "--medium", "box", "--snapshot-particles", "active",
+                                   "--quiet", "--out", dir.string()};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  int status = -1;
+  rusage ru{};
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0)
+    wait4(pid, &status, 0, &ru);
+  fs::remove_all(dir);
+  const bool ok = pid > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return ok ? static_cast<double>(ru.ru_maxrss) * 1024.0 : 0.0;
+}
+
+// What a resting sphere costs the command, not the engine alone (sim/bytes_per_particle_3d): the
+// slope of its peak between N = 2e6 and 4e6 (the same blast in both: the extra spheres rest).
+// Measured before the run loop took the active particles alone for its snapshot: 320 and 547 MB,
+// 114 B a sphere.
+std::vector<Figure> run_peak_per_resting_particle() {
+  constexpr std::int64_t kSmall = 2000000, kLarge = 4000000;
+  const double small = run_command_peak(kSmall), large = run_command_peak(kLarge);
+  const bool ok = small > 0 && large > 0;
+  return {{"peak_megabytes_2e6", small / 1e6, "MB", ""},
+          {"peak_megabytes_4e6", large / 1e6, "MB", ""},
+          {"peak_bytes_per_resting_particle", ok ? (large - small) / (kLarge - kSmall) : 0, "B",
+           "<= 40"},
+          {"exit_ok", ok ? 1.0 : 0.0, "", "1"}};
+}
+
 }  // namespace
 
 void add_run_cases(std::vector<Case>& cases) {
+  cases.push_back({"run/peak_bytes_per_particle_3d",
+                   "peak resident bytes of the whole `grainshock run` command per resting sphere: "
+                   "3D box, r = 0.5, t-max 1, --snapshot-particles active, N = 2e6 and 4e6",
+                   false, run_peak_per_resting_particle});
   cases.push_back(
       {"run/kick3d_2e5_vs_2e6",
        "the run loop of `grainshock run`, 3D kick, r = 0.5, to t = 2e4, N = 2e5 and 2e6 "

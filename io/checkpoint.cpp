@@ -74,6 +74,31 @@ std::string field(const char (&f)[32]) {
 
 }  // namespace
 
+std::uint64_t file_checksum(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw UserError("cannot read '" + path.string() + "': " + os_reason());
+  std::vector<unsigned char> chunk(kChunk);
+  std::uint64_t hash = 0;
+  for (;;) {
+    std::size_t got = 0;
+    while (got < kChunk) {
+      const ssize_t n = ::read(fd, chunk.data() + got, kChunk - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const std::string why = os_reason();
+        ::close(fd);
+        throw UserError("cannot read '" + path.string() + "': " + why);
+      }
+      if (n == 0) break;
+      got += static_cast<std::size_t>(n);
+    }
+    if (got > 0) hash = chunk_hash(chunk.data(), got, hash);
+    if (got < kChunk) break;
+  }
+  ::close(fd);
+  return hash;
+}
+
 std::filesystem::path checkpoint_to_resume(const std::filesystem::path& path,
                                            const std::filesystem::path& previous,
                                            const std::string& what) {

@@ -48,6 +48,10 @@ class CheckpointWriter final : public StateWriter {
   bool finished_ = false;
 };
 
+// The checksum of a whole file, as checkpoints take theirs; UserError naming the file and the OS
+// reason if it cannot be read.
+std::uint64_t file_checksum(const std::filesystem::path& path);
+
 // The checkpoint to resume from: `path`, else `previous` (a kill between the two renames of a
 // commit leaves only that one). UserError "'FOLDER' holds no WHAT (NAME) to resume from" when
 // neither exists.

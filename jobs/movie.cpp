@@ -71,10 +71,11 @@ FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOption
     // The parts are removed only once the movie is joined: the kill came after that.
     if (!render::MovieParts::on_disk(movie, r.parts) && std::filesystem::exists(movie))
       return remove_leftovers_of_finished(dir, o.quiet);
+    check_parts(movie, r.part_sums);
     pass = r.pass;
     p.scans = std::move(r.scans);
     frames.start_at(std::move(r.sim), r.next);
-    ck->resumed();
+    ck->resumed(std::move(r.part_sums));
   }
   KeptFrames pngs(dir, o.keep_frames);
   // Opened now so that an unwritable folder is reported before any work.
@@ -98,6 +99,10 @@ FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOption
   finish_first_pass(p);
   if (ck)
     frames.hook = {due, [&](std::size_t next, const Simulation& sim) {
+                     // Only at a part's end: a part cut anywhere else would be encoded otherwise
+                     // than in a movie never stopped. A stop elsewhere leaves the last checkpoint,
+                     // and a resume draws the frames since it again.
+                     if (!movie.at_part_end()) return;
                      movie.cut();  // the parts a checkpoint names are on disk before it
                      ck->write(kMoviePass, next, frames.size(), p.scans, follow, movie, sim);
                    }};

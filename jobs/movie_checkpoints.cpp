@@ -32,6 +32,12 @@ void LiveCheckpoints::write(Pass pass, std::size_t next, std::size_t frames,
   if (follow) follow->save(out);
   out.value(static_cast<std::int32_t>(movie.parts()));
   out.value(static_cast<std::int64_t>(movie.frames_added()));
+  // Each part's checksum, taken once, just after it was synced: a resume checks the parts
+  // before it joins them.
+  for (int k = static_cast<int>(part_sums_.size()); k < movie.parts(); ++k)
+    part_sums_.push_back(file_checksum(movie.part(k)));
+  part_sums_.resize(static_cast<std::size_t>(movie.parts()));
+  for (std::uint64_t sum : part_sums_) out.value(sum);
   sim.save(out);
   out.commit();
   resumed();
@@ -69,9 +75,24 @@ Resumed read_live_checkpoint(const std::filesystem::path& dir, const MovieCheckp
   // Every frame before the next one is in a whole part.
   in.expect(r.parts >= 0 && r.part_frames >= r.parts &&
             r.part_frames == (r.pass == kMoviePass ? std::int64_t(r.next) : 0));
+  r.part_sums.resize(static_cast<std::size_t>(r.parts));
+  for (std::uint64_t& sum : r.part_sums) in.value(sum);
   r.sim = load_simulation(physics, in);
   in.finish();
   return r;
+}
+
+void check_parts(const std::filesystem::path& movie, const std::vector<std::uint64_t>& sums) {
+  const auto dir = render::MovieParts::folder(movie);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    const auto part = render::MovieParts::part_path(dir, static_cast<int>(k));
+    if (file_checksum(part) != sums[k])
+      throw UserError("movie part '" + part.string() +
+                      "' is damaged (not the bytes it was written with); the parts are left as "
+                      "they are; make the movie again with: grainshock movie --config " +
+                      (movie.parent_path() / "movie.toml").string() + " --out " +
+                      movie.parent_path().string() + " --force");
+  }
 }
 
 FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet) {

@@ -38,6 +38,11 @@ class LiveCheckpoints {
         id_{physics.dim, static_cast<std::uint64_t>(physics.particles)} {}
   // The first is due at once, so that a kill at any moment leaves one; then every `every` s.
   bool due() const { return !any_ || (every_ > 0 && seconds_since(last_) >= every_); }
+  // After a checkpoint is written or read; `part_sums`: the checksums of the parts it names.
+  void resumed(std::vector<std::uint64_t> part_sums) {
+    part_sums_ = std::move(part_sums);
+    resumed();
+  }
   void resumed() {
     any_ = true;
     last_ = std::chrono::steady_clock::now();
@@ -53,6 +58,7 @@ class LiveCheckpoints {
   StateIdentity id_;
   bool any_ = false;
   std::chrono::steady_clock::time_point last_;
+  std::vector<std::uint64_t> part_sums_;  // of the whole parts on disk, taken once each
 };
 
 // What a live movie goes on from.
@@ -63,6 +69,7 @@ struct Resumed {
   std::optional<render::FollowCamera> follow;
   int parts = 0;
   std::int64_t part_frames = 0;
+  std::vector<std::uint64_t> part_sums;  // io/checkpoint.h file_checksum of each part
   std::unique_ptr<Simulation> sim;
 };
 
@@ -72,6 +79,10 @@ struct Resumed {
 Resumed read_live_checkpoint(const std::filesystem::path& dir, const MovieCheckpoints& c,
                              const PhysicsConfig& physics, const MoviePlan& plan,
                              std::size_t frames, const render::FollowCamera& camera);
+
+// UserError naming the first part of `movie` whose bytes are not those checksummed when it was
+// written (a damaged disk, a hand edit): joined, it would spoil the movie. Nothing is touched.
+void check_parts(const std::filesystem::path& movie, const std::vector<std::uint64_t>& sums);
 
 // A finished movie joins its parts into movie.mp4, then removes its checkpoints, then its parts:
 // a kill after the join leaves a finished movie whose leftovers only need removing.

@@ -10,6 +10,8 @@
 #include <iterator>
 #include <optional>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "analysis/json.h"
 #include "analysis/paper.h"
@@ -193,6 +195,23 @@ void write_trajectory(const fs::path& dir, const RunOptions& o) {
   out->finish();
 }
 
+// The names a run writes in its folder (kRunOutputs and its trajectory).
+std::vector<const char*> run_outputs(const RunOptions& o) {
+  std::vector<const char*> names(std::begin(kRunOutputs), std::end(kRunOutputs));
+  if (!o.trajectory.empty()) names.push_back(o.trajectory.c_str());
+  return names;
+}
+
+// Removes what a run wrote in `dir` but its run.toml.
+void clear_run_outputs(const fs::path& dir, const RunOptions& o) {
+  for (const char* name : run_outputs(o)) {
+    if (std::string_view(name) == "run.toml") continue;
+    std::error_code ec;
+    fs::remove_all(dir / name, ec);
+    if (ec) throw UserError("cannot remove '" + (dir / name).string() + "': " + ec.message());
+  }
+}
+
 bool finished_run(const fs::path& dir) {
   std::ifstream f(dir / "summary.json");
   const Json j = Json::parse(f, nullptr, /*allow_exceptions=*/false);  // absent or cut: not done
@@ -256,6 +275,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
   // Before the set-up, so that Ctrl-C during it stops the run at its first checkpoint.
   install_stop_handlers();
   fs::path dir;
+  bool from_start = !resume;  // a resumed folder without a checkpoint starts again too
   std::unique_ptr<RunLoop> loop;
   if (resume) {
     dir = o.out;
@@ -276,20 +296,33 @@ RunResult run_job(const RunOptions& o, bool resume) {
       return {};
     }
     lock_output_dir(dir);
-    loop = RunLoop::resume(o.plan, dir, spec);
-    remove_leftovers(dir);
-    // The snapshot a stop wrote of its moment is not one of the run's.
-    const double t = loop->simulation().time();
-    const auto scheduled = snapshot_times(o.plan);
-    if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
-      fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
+    from_start = !fs::exists(RunLoop::checkpoint_path(dir)) &&
+                 !fs::exists(RunLoop::previous_checkpoint_path(dir));
+    if (from_start) {
+      // Killed before its first checkpoint (in its set-up): nothing it wrote can be gone on
+      // from, and its run.toml is all a run needs, so it starts again from t = 0 and ends with
+      // the bytes of a run never stopped.
+      clear_run_outputs(dir, o);
+      if (!o.quiet)
+        std::fprintf(stderr,
+                     "grainshock: %s holds no checkpoint (stopped during its set-up): the run "
+                     "starts again from t = 0\n",
+                     dir.c_str());
+    } else {
+      loop = RunLoop::resume(o.plan, dir, spec);
+      remove_leftovers(dir);
+      // The snapshot a stop wrote of its moment is not one of the run's.
+      const double t = loop->simulation().time();
+      const auto scheduled = snapshot_times(o.plan);
+      if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
+        fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
+    }
   } else {
-    std::vector<const char*> replaced(std::begin(kRunOutputs), std::end(kRunOutputs));
-    if (!o.trajectory.empty()) replaced.push_back(o.trajectory.c_str());
-    dir = prepare_output_dir(o.out, o.force, replaced);
-    lock_output_dir(dir);
-    remove_leftovers(dir);
+    dir = prepare_output_dir(o.out, o.force, run_outputs(o));
     write_file_atomic(dir / "run.toml", run_toml(o));
+  }
+  if (from_start) {
+    remove_leftovers(dir);
     loop = std::make_unique<RunLoop>(o.plan, dir, spec);
   }
   loop->checkpoint_every = o.checkpoint_every;
@@ -312,7 +345,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
   if (loop->stage() == kSampling) {
     // A new run draws its movie as it goes, at the frame times between its samples; a resumed
     // one has passed frames already, and replays the run for its movie after sampling.
-    if (o.movie && !resume && movie_in_one_pass(o.plan.physics, movie)) {
+    if (o.movie && from_start && movie_in_one_pass(o.plan.physics, movie)) {
       if (!o.quiet) std::fprintf(stderr, "grainshock: the run, drawing the movie of the front\n");
       const RunTiming before = loop->timing();
       const auto t1 = std::chrono::steady_clock::now();

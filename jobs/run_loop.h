@@ -104,6 +104,7 @@ class RunLoop {
   bool samples(double until);
   bool advance(double t);  // the engine to time t, in slices; false if stopped
   void record();
+  void write_run_snapshot(double t);  // the snapshot file of time t, as the plan says
 
   RunPlan plan_;
   std::filesystem::path dir_;
@@ -114,7 +115,7 @@ class RunLoop {
   std::size_t next_ = 0, next_snap_ = 0;
   std::uint32_t stage_ = 0;
   AppendFile csv_;
-  Snapshot snapshot_, kept_;  // reused (kept_: the active particles of snapshot_)
+  Snapshot snapshot_;  // reused
   RunTiming timing_;
   double last_checkpoint_ = 0;  // wall clock of the last one, seconds of steady_clock
   // The last checkpoint's CheckpointWriter::commit(); its destructor waits for it.

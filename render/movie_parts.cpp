@@ -235,6 +235,7 @@ void MovieParts::open_part() {
 }
 
 void MovieParts::add(Image frame) {
+  if (open_ && open_->frames_added() > 0 && at_part_end()) cut();
   if (!open_) open_part();
   open_->add(std::move(frame));
   ++frames_;

@@ -1,8 +1,10 @@
 #pragma once
-// A movie made in parts, so that a long movie can be cut where a checkpoint is taken and go on
-// from there after a kill: the frames go to DIR/movie.parts/part_NNNN.mp4, each part a whole
-// movie of its own (MovieWriter), and finish() joins them into the movie without encoding again
-// (join_movies). A movie of one part is only renamed, so an uncut movie is the bytes it always was.
+// A movie made in parts, so that a long movie can go on from a checkpoint after a kill: the
+// frames go to DIR/movie.parts/part_NNNN.mp4, each part a whole movie of its own (MovieWriter)
+// of MovieOptions::keyint frames (counted from the movie's first frame; a stop may cut one
+// short), and finish() joins them into the movie without encoding again (join_movies). Each
+// part being encoded alone, a movie is the same bytes whether or not it was stopped and resumed
+// at a part's end, and a checkpoint is taken only there. A movie of one part is only renamed.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -36,7 +38,13 @@ class MovieParts {
   MovieParts(const MovieParts&) = delete;
   MovieParts& operator=(const MovieParts&) = delete;
 
+  // Cuts the open part first when it is whole (keyint frames since the movie's first frame).
   void add(Image frame);
+  // Whether the frames added so far end at a part's end (where a checkpoint may be taken).
+  bool at_part_end() const { return frames_ % options_.keyint == 0; }
+  // Part k's file, in this movie's folder of parts or in `dir`.
+  std::filesystem::path part(int k) const { return part_path(dir_, k); }
+  static std::filesystem::path part_path(const std::filesystem::path& dir, int k);
   // A frame the open part's encoder is done with, or an empty image (MovieWriter::spare).
   Image spare() { return open_ ? open_->spare() : Image{}; }
   // Finishes the open part, if a frame went into it, and syncs it to disk: after cut(), parts()
@@ -59,7 +67,6 @@ class MovieParts {
   int encoded_height() const { return height_; }
 
  private:
-  static std::filesystem::path part_path(const std::filesystem::path& dir, int k);
   std::filesystem::path part_path(int k) const { return part_path(dir_, k); }
   void open_part();
 

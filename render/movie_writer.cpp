@@ -69,6 +69,8 @@ void check_movie_options(const MovieOptions& o) {
     throw UserError("movie fps must be in (0, 1000], got " + shortest(o.fps));
   if (o.crf < 0 || o.crf > 51)
     throw UserError("movie crf must be in 0..51, got " + std::to_string(o.crf));
+  if (o.keyint < 1 || o.keyint > 100000)
+    throw UserError("movie keyint must be in 1..100000, got " + std::to_string(o.keyint));
   if (o.queue_frames < 1) throw UserError("movie queue_frames must be >= 1");
 }
 

@@ -35,6 +35,10 @@ struct MovieOptions {
   // Size of the frames given to add(). Odd sizes are padded to even ones, see MovieWriter.
   int width = 0;
   int height = 0;
+  // Frames of each part of a movie made in parts (MovieParts): a part starts with a key frame
+  // and is encoded alone, so that the movie's bytes are the same wherever it was stopped and
+  // resumed; a killed movie goes on from the last whole part.
+  int keyint = 120;
   int queue_frames = 4;  // frames waiting for the encoder before add() blocks
   int threads = 0;       // encoder threads, 0 = libavcodec chooses
 };

@@ -185,10 +185,29 @@ TEST(CliResume, WhatCannotBeResumedIsRefused) {
       << toml.substr(toml.find("cutoff"));
   refused(cut, "another run");
   std::ofstream(cut / "run.toml", std::ios::trunc) << toml;
-  // Without the newest, the one before it is used (a kill can fall between the two renames).
-  fs::remove(cut / "checkpoint.bin");
-  fs::remove(cut / "checkpoint.prev.bin");
-  refused(cut, "no checkpoint");
+}
+
+// A run killed in its set-up, before its first checkpoint, leaves run.toml, the header of
+// timeseries.csv, an empty snapshots/ and a checkpoint being written: resume starts it again
+// from t = 0 and ends with the files of a run never stopped; `run` without --force says how.
+TEST(CliResume, KilledBeforeItsFirstCheckpointStartsAgain) {
+  const std::string c =
+      "--dim 2 --medium box --particles 3000 --restitution 0.5 --t-max 400 --snapshot-times 100 "
+      "--movie --quiet";
+  const auto whole = scratch_dir("whole"), cut = scratch_dir("cut");
+  ASSERT_EQ(grainshock("run " + c + " --out " + whole.string()).exit_code, 0);
+  fs::create_directories(cut / "snapshots");
+  fs::copy_file(whole / "run.toml", cut / "run.toml");
+  const std::string csv = read_file(whole / "timeseries.csv");
+  std::ofstream(cut / "timeseries.csv", std::ios::binary) << csv.substr(0, csv.find('\n') + 1);
+  std::ofstream(cut / "checkpoint.bin.tmp.4242", std::ios::binary) << "cut by the kill";
+  const auto again = grainshock("run " + c + " --out " + cut.string());
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  const auto r = grainshock("resume " + cut.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("starts again from t = 0"), std::string::npos) << r.err;
+  expect_same_folder(whole, cut);
 }
 
 std::vector<std::string> run_flags() {
