@@ -193,7 +193,7 @@ TEST(CliResume, WhatCannotBeResumedIsRefused) {
 TEST(CliResume, KilledBeforeItsFirstCheckpointStartsAgain) {
   const std::string c =
       "--dim 2 --medium box --particles 3000 --restitution 0.5 --t-max 400 --snapshot-times 100 "
-      "--movie --quiet";
+      "--png --width 64 --height 48 --quiet";
   const auto whole = scratch_dir("whole"), cut = scratch_dir("cut");
   ASSERT_EQ(grainshock("run " + c + " --out " + whole.string()).exit_code, 0);
   fs::create_directories(cut / "snapshots");
