@@ -6,6 +6,7 @@
 #include "analysis/json.h"
 #include "analysis/table.h"
 #include "io/snapshot_file.h"
+#include "io/snapshot_writer.h"
 #include "render/png.h"
 #include "tests/apps/cli_test_util.h"
 
@@ -165,6 +166,32 @@ TEST(CliRun, SameConfigAndSeedGiveIdenticalBytes) {
   const auto d = scratch_dir("d");
   ASSERT_EQ(grainshock("run " + kSmall + " --seed 8 --out " + d.string()).exit_code, 0);
   EXPECT_NE(read_file(a / "timeseries.csv"), read_file(d / "timeseries.csv"));
+}
+
+// --snapshot-particles active takes the moving particles from the engine alone (no copy of every
+// particle first): the very particles and numbers that filtering the whole snapshot gives, in 2D
+// and 3D, and at a time with particles at rest around the band.
+TEST(CliRun, ActiveSnapshotsAreTheActiveParticlesOfTheWholeOnes) {
+  for (const std::string dim : {"2", "3"}) {
+    const auto all = scratch_dir("all" + dim), active = scratch_dir("active" + dim);
+    const std::string c = "--dim " + dim + " " + kSmall + " --snapshot-times 30";
+    ASSERT_EQ(grainshock("run " + c + " --out " + all.string()).exit_code, 0);
+    ASSERT_EQ(
+        grainshock("run " + c + " --snapshot-particles active --out " + active.string()).exit_code,
+        0);
+    for (const char* name : {"snapshots/tsim_30.xyz", "snapshots/tsim_300.xyz"}) {
+      const Snapshot whole = read_snapshot((all / name).string());
+      const Snapshot moving = read_snapshot((active / name).string());
+      Snapshot expected;
+      active_particles(whole, expected);
+      ASSERT_GT(expected.size(), 0u) << name;
+      ASSERT_LT(expected.size(), whole.size()) << name << ": none at rest";
+      ASSERT_EQ(moving.size(), expected.size()) << name;
+      EXPECT_TRUE(moving.position == expected.position) << name;
+      EXPECT_TRUE(moving.velocity == expected.velocity) << name;
+      EXPECT_TRUE(moving.first_collision == expected.first_collision) << name;
+    }
+  }
 }
 
 TEST(CliRun, ThermalRunsReportPressure) {
