@@ -571,7 +571,7 @@ TEST(MovieCommand, ResumeRefusesADamagedPart) {
       " --t-max 100000 --frames 20000 --frame-spacing lin --keyint 5 --width 96 --height 72 "
       "--keep-frames --checkpoint-every 0.001 --out " +
       dir.string());
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
   // Frame 12 is drawn after the checkpoint at frame 10 has named two parts.
   while (!fs::exists(dir / "frames" / "frame_00012.png") &&
          std::chrono::steady_clock::now() < deadline)
