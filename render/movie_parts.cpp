@@ -189,6 +189,7 @@ MovieParts::MovieParts(const fs::path& movie, const MovieOptions& options, int p
       dir_(folder(movie)),
       options_(options),
       parts_(parts_done),
+      parts_done_(parts_done),
       frames_(frames_done) {
   GS_CHECK(parts_done >= 0 && frames_done >= 0);
   if (!on_disk(movie, parts_done))
@@ -275,7 +276,14 @@ bool MovieParts::finish(bool keep_parts) {
   } else {
     std::vector<fs::path> parts;
     for (int k = 0; k < parts_; ++k) parts.push_back(part_path(k));
-    join_movies(parts, movie_);
+    try {
+      join_movies(parts, movie_);
+    } catch (...) {
+      // Parts made before this process (a resumed movie) are not made again by it: a refused
+      // join leaves them for a look, with the checkpoint that names them.
+      if (parts_done_ > 0) keep_ = true;
+      throw;
+    }
   }
   if (keep_parts) keep_ = true;
   return true;

@@ -33,7 +33,8 @@ class MovieParts {
   // an unwritable folder or a bad option is reported before any work.
   MovieParts(const std::filesystem::path& movie, const MovieOptions& options, int parts_done = 0,
              std::int64_t frames_done = 0);
-  // Removes the parts unless finish(false) has put the movie in place or keep() was called.
+  // Removes the parts unless finish(false) has put the movie in place or keep() was called, or
+  // the join of a movie that went on from parts on disk failed.
   ~MovieParts();
   MovieParts(const MovieParts&) = delete;
   MovieParts& operator=(const MovieParts&) = delete;
@@ -74,6 +75,7 @@ class MovieParts {
   MovieOptions options_;
   std::unique_ptr<MovieWriter> open_;  // the part frames go to; null after cut()
   int parts_ = 0;                      // whole parts on disk
+  int parts_done_ = 0;                 // of them, those made before this object
   std::int64_t frames_ = 0;            // in whole parts and the open one
   std::string encoder_name_;
   int width_ = 0, height_ = 0;

@@ -569,6 +569,28 @@ TEST(MovieParts, PartsOfKeyintFramesMakeTheSameBytesWhereverCut) {
   EXPECT_TRUE(a == bytes(dir / "cut.mp4")) << "a movie resumed at a part's end differs";
 }
 
+// A movie going on from parts on disk whose join is refused (a part spoiled meanwhile) keeps
+// every part: they are not made again by this process.
+TEST(MovieParts, ARefusedJoinOfAResumedMovieKeepsTheParts) {
+  const auto dir = fresh_dir("parts_refused");
+  const MovieOptions o = small_movie();
+  const fs::path parts = MovieParts::folder(dir / "movie.mp4");
+  {
+    MovieParts movie(dir / "movie.mp4", o);
+    add_parts(movie, o, {3, 4});
+    movie.keep();
+  }
+  {
+    MovieParts movie(dir / "movie.mp4", o, 2, 7);
+    add_parts(movie, o, {2}, 7);
+    std::ofstream(parts / "part_0000.mp4", std::ios::trunc) << "spoiled";
+    EXPECT_THROW(movie.finish(), UserError);
+  }
+  EXPECT_FALSE(fs::exists(dir / "movie.mp4"));
+  for (const char* name : {"part_0000.mp4", "part_0001.mp4", "part_0002.mp4"})
+    EXPECT_TRUE(fs::exists(parts / name)) << name;
+}
+
 TEST(MovieParts, PartsOfOtherSettingsAreNotJoined) {
   const auto dir = fresh_dir("parts_mismatch");
   MovieOptions a = small_movie(), b = small_movie();
