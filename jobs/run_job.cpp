@@ -372,10 +372,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
       if (!stopped) loop->set_stage(kAfterSampling);
     }
     if (stopped) {  // a look at the data may want the moment too; a resume removes it
-      const Snapshot s = loop->simulation().snapshot();
-      write_snapshot(
-          (dir / "snapshots" / snapshot_name(s.info.time, o.plan.snapshots.format)).string(), s,
-          o.plan.snapshots);
+      loop->write_run_snapshot(loop->simulation().time());
     } else {
       loop->write_checkpoint();
     }

@@ -93,6 +93,9 @@ class RunLoop {
   void finish_checkpoint();
   void remove_checkpoints();
 
+  // The snapshot file of the state now (time t), as the plan says (format, particles).
+  void write_run_snapshot(double t);
+
   const Simulation& simulation() const { return *sim_; }
   const RunTiming& timing() const { return timing_; }
 
@@ -104,7 +107,6 @@ class RunLoop {
   bool samples(double until);
   bool advance(double t);  // the engine to time t, in slices; false if stopped
   void record();
-  void write_run_snapshot(double t);  // the snapshot file of time t, as the plan says
 
   RunPlan plan_;
   std::filesystem::path dir_;
