@@ -1,5 +1,5 @@
-// Benchmarks of `grainshock run` around the engine (issue 20): the run loop with its samples,
-// timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole (issue 32).
+// Benchmarks of `grainshock run` around the engine: the run loop with its samples,
+// timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole.
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
