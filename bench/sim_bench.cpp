@@ -1,4 +1,4 @@
-// Engine benchmarks of issues 2 and 32. Reference figures on this kind of machine (2 cores):
+// Engine benchmarks: collisions per CPU-second against a published engine. Reference figures on this kind of machine (2 cores):
 // Smallenburg's EDMD (2022, the Single variant, -O3 -march=native, thermostat off), started from
 // the same melted state as sim/thermal3d_phi* and measured over 20 N collisions after the same
 // warm-up, makes 0.23-0.27 million collisions per CPU-second at packing 0.2, 0.45-0.55 million

@@ -98,7 +98,7 @@ std::string energy_phi1_markdown(const Crossovers& crossovers) {
 }
 
 // phi1 nearest the elastic limit by each reading, weighed between the paper's value and the
-// scaling estimate (analysis/paper.h, weigh_phi1): the question, answered per reading.
+// scaling estimate (analysis/paper.h, weigh_phi1): which of the two the data favour, answered per reading.
 std::string phi1_limit_markdown(const Crossovers& crossovers) {
   std::ostringstream md;
   md << "### phi1 nearest the elastic limit: which value the data favour\n\n"

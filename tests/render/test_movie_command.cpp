@@ -548,7 +548,7 @@ TEST(MovieCommand, KilledAtRandomMomentsAndResumedDrawsTheSameFrames) {
       EXPECT_NEAR(b.duration, a.duration, 1e-3);
       EXPECT_EQ(av_cmp_q(b.avg_frame_rate, a.avg_frame_rate), 0);
       // Both are within about 35 dB of the same picture (see test_movie.cpp): 30 dB between
-      // them is the bound for "the same frame".
+      // them is the bound we hold "the same frame" to.
       EXPECT_GE(psnr(a.rgb, b.rgb, a.width, a.height), 30) << "frame " << k;
     }
   }
