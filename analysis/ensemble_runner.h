@@ -5,7 +5,7 @@
 // finished realisation travels as the text of its folder (analysis/realisation.h) to the main
 // thread of rank 0, which writes it (whole or not at all) and adds it into exact sums. Exact
 // sums make the result independent of which rank or thread ran what, and reading a finished
-// realisation back from its folder gives the same numbers as running it (DESIGN.md: results do
+// realisation back from its folder gives the same numbers as running it (docs/design.md: results do
 // not depend on the split), so an ensemble killed at any moment resumes to the same bytes.
 // Memory: one engine and one realisation's measures per thread.
 #include <cstdint>

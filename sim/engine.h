@@ -42,7 +42,7 @@
 
 namespace gs {
 
-// Observables of the moving particles at one instant, with the definitions of DESIGN.md.
+// Observables of the moving particles at one instant, with the definitions of docs/design.md.
 struct Sample {
   double t = 0;
   std::int64_t active = 0;  // particles that have collided at least once
