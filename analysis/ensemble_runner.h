@@ -31,7 +31,7 @@ struct RunnerOptions {
   // them: the other ranks have no folder, and run a realisation they are handed from t = 0.
   double checkpoint_interval = 600;
   // A state in flight that could not be used or written, one line, from worker threads of rank 0
-  // (must be thread-safe); empty: "grainshock: warning: ..." on stderr.
+  // (must be thread-safe); empty: nothing is said (the job's MessageSink gives one).
   std::function<void(const std::string&)> on_warning;
   SnapshotHook on_snapshot;  // called from worker threads of rank 0 only; must be thread-safe
   // Called on rank 0's main thread after each realisation finished in this call, with

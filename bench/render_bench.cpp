@@ -343,10 +343,11 @@ std::vector<Figure> plain_splat(bool antialiased, const std::string& target) {
           {"checksum", static_cast<double>(p.checksum() % 1000000), "", ""}};
 }
 
-// LAMMPS `dump image` of render/discs_2.5e5's scene, the program physicists compare with: the same 2.5e5 discs in the
-// same box, 1920x1080, type 1 inactive and type 2 active, written as PPM (no PNG encoding). The
-// cost of an image is the CPU time of `run 20` less that of `run 0` (set-up and the image every
-// run writes at its start), over 20. Skipped (exit_ok 0) when `lmp` is not on the PATH.
+// LAMMPS `dump image` of render/discs_2.5e5's scene, the program physicists compare with: the
+// same 2.5e5 discs in the same box, 1920x1080, type 1 inactive and type 2 active, written as PPM
+// (no PNG encoding). The cost of an image is the CPU time of `run 20` less that of `run 0` (set-up
+// and the image every run writes at its start), over 20. Skipped (exit_ok 0) when `lmp` is not on
+// the PATH.
 double lammps_cpu_seconds(const std::filesystem::path& dir, int images) {
   const std::string in = (dir / ("in." + std::to_string(images))).string();
   {

@@ -1,9 +1,9 @@
-// Engine benchmarks: collisions per CPU-second against a published engine. Reference figures on this kind of machine (2 cores):
-// Smallenburg's EDMD (2022, the Single variant, -O3 -march=native, thermostat off), started from
-// the same melted state as sim/thermal3d_phi* and measured over 20 N collisions after the same
-// warm-up, makes 0.23-0.27 million collisions per CPU-second at packing 0.2, 0.45-0.55 million
-// at 0.4 and 0.51-0.58 million at 0.5 (N = 1e5, load 1.4-2.6); DynamO 0.035-0.045 million, and
-// 0.034 million on the kick.
+// Engine benchmarks: collisions per CPU-second against a published engine. Reference figures on
+// this kind of machine (2 cores): Smallenburg's EDMD (2022, the Single variant, -O3 -march=native,
+// thermostat off), started from the same melted state as sim/thermal3d_phi* and measured over 20 N
+// collisions after the same warm-up, makes 0.23-0.27 million collisions per CPU-second at packing
+// 0.2, 0.45-0.55 million at 0.4 and 0.51-0.58 million at 0.5 (N = 1e5, load 1.4-2.6); DynamO
+// 0.035-0.045 million, and 0.034 million on the kick.
 #include <algorithm>
 #include <cmath>
 #include <limits>

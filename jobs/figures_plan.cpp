@@ -18,8 +18,9 @@ struct RunSize {
 };
 
 // The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7, 0.9 (and 0.85 in 3D) added so that phi1
-// rests on six values of r, enough for a fit with its own error. The paper's r < 1 have the most realisations (Figs. 3-5
-// and the plateau fits), the added r fewer (only t_c1 and exponents are read from them).
+// rests on six values of r, enough for a fit with its own error. The paper's r < 1 have the most
+// realisations (Figs. 3-5 and the plateau fits), the added r fewer (only t_c1 and exponents are
+// read from them).
 //
 // The largest r run farthest (t_c1 grows as r -> 1) and r = 1 fastest (R ~ t^(2/(d+2))); the
 // times keep the front (where the active density falls to half the ambient) below ~0.7 L/2 and
@@ -301,7 +302,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     add("d3_r1_large", e, CaseRole::Elastic3D);
     for (auto& c : plan.cases)
       c.superseded_for_alpha =
-          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.restitution >= 1;
+          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.elastic();
   }
   if (long_3d) {
     for (const Long3D& s : long3d_cases()) {

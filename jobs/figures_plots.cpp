@@ -65,7 +65,7 @@ std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int 
   std::vector<const CaseResult*> out;
   for (const auto& c : all)
     if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.dim == d &&
-        (c.plan->spec.physics.restitution == 1.0) == elastic)
+        c.plan->spec.physics.elastic() == elastic)
       out.push_back(&c);
   return out;
 }

@@ -12,6 +12,7 @@
 #include "jobs/progress.h"
 #include "render/movie_writer.h"
 #include "sim/config.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -41,6 +42,7 @@ struct FrontMovieOptions {
   std::string backend = "auto";
   bool quiet = false;
   ProgressFactory progress;  // the line of each pass; none by default
+  MessageSink messages;      // notes: frames written, what a reader assumed; none by default
   ReadOptions read;          // stored snapshots: --dt, --unwrap (--dim is the simulation's flag)
 };
 

@@ -116,8 +116,8 @@ TEST(EffectiveExponent, FlatSlopesKeepTheirWholePlateauWhateverTheNoise) {
 }
 
 TEST(EffectiveExponent, SlowDriftThatOldTolerancePassedIsRejected) {
-  // The 2D r < 1 N_t of --full at delta = 1e-4: a slope drifting from 0.66 at 1e4 to 0.72 at 2e5, i.e.
-  // linear in ln t, s = s0 + g ln t with g = 0.06 / ln 20. Over any half decade it moves by
+  // The 2D r < 1 N_t of --full at delta = 1e-4: a slope drifting from 0.66 at 1e4 to 0.72 at 2e5,
+  // i.e. linear in ln t, s = s0 + g ln t with g = 0.06 / ln 20. Over any half decade it moves by
   // 0.023, which intervals of +-(0.02 + band) absorbed; the drift is resolved by 20
   // realisations with 0.5% noise, so no window is a plateau.
   const double g = 0.06 / std::log(20.0), s0 = 0.66 - g * std::log(1e4);
