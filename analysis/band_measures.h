@@ -1,5 +1,5 @@
 #pragma once
-// Measures of the band that do not depend on how a grid cuts it (issue 21): the paper's "typical
+// Measures of the band that do not depend on how a grid cuts it: the paper's "typical
 // packing fraction ... 0.78-0.82" in cells of side 10 does not say how cells straddling the
 // band's edges count, and a band about one cell thick puts nearly every cell on an edge. So the
 // cell reading is kept as a whole distribution and beside it stand:

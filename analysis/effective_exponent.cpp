@@ -165,7 +165,7 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
     v.excess = std::max(std::fabs(v.drift) - (o.z * v.drift_error + o.floor),
                         std::fabs(v.curvature) - (o.z * v.curvature_error + o.floor));
     // Thirds average a wave of about a third's length away: a window of four decades whose slope
-    // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95, issue 31). So the window is
+    // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95). So the window is
     // also cut into pieces of min_decades or more, and each piece's mean must lie within
     // z_m sigma + floor of the window's, z_m the two-sided normal quantile at the level of z
     // shared by the m pieces (Bonferroni), so that the m of them together reject a flat slope's

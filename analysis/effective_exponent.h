@@ -61,7 +61,7 @@ struct PlateauOptions {
   double t_max = std::numeric_limits<double>::infinity();
   // The latest plateau must end within this many decades of the last usable sample; one that
   // ends earlier is a transient the slope leaves (every later window failed the rule), not the
-  // asymptotic regime, and is reported as no plateau (issue 33: 3D N_t's [32, 562] of --quick,
+  // asymptotic regime, and is reported as no plateau (3D N_t's [32, 562] of --quick,
   // the elastic build-up, while the slope drifts on for 1.7 decades). Infinity: any window.
   double max_end_gap_decades = std::numeric_limits<double>::infinity();
 };

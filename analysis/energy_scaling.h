@@ -1,7 +1,7 @@
 #pragma once
-// phi1 read from the energy curves themselves, with no plateau of a local slope (issue 33 item
-// 5). If t_c1 ~ (1 - r^2)^-phi1 is the one time scale of the crossover, E_t / E_0 =
-// g(t (1 - r^2)^phi1) for r near 1, and two readings follow that do not need the late scaling
+// phi1 read from the energy curves themselves, with no plateau of a local slope, which
+// the 3D runs do not reach. If t_c1 ~ (1 - r^2)^-phi1 is the one time scale of the crossover, E_t /
+// E_0 = g(t (1 - r^2)^phi1) for r near 1, and two readings follow that do not need the late scaling
 // regime the intersection rule (crossover.h) extrapolates from:
 //  - the time t_f at which <E_t> first falls to a fixed fraction f of E_0: phi1 = -d ln t_f /
 //    d ln(1 - r^2) between two r, the same for every f where the form holds (its level

@@ -2,7 +2,7 @@
 // Ensemble averages over realisations: mean and standard error per entry, with every sum kept
 // exact (analysis/exact_sum.h). The result is therefore the same to the last bit whatever the
 // order in which realisations arrive, however they were split over threads or cluster jobs and
-// merged (DESIGN.md: results do not depend on the split). This is stronger than reducing in
+// merged (docs/design.md: results do not depend on the split). This is stronger than reducing in
 // realisation order and needs no buffering of early arrivals: memory is two exact sums per
 // entry, independent of the number of realisations.
 #include <cstdint>

@@ -233,9 +233,7 @@ RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
   if (!dir.empty()) {
     in_flight.file = dir / kInFlightFolder;
     in_flight.interval = o.checkpoint_interval;
-    in_flight.warn = o.on_warning ? o.on_warning : [](const std::string& what) {
-      std::fprintf(stderr, "grainshock: warning: %s\n", what.c_str());
-    };
+    in_flight.warn = o.on_warning ? o.on_warning : [](const std::string&) {};
     keep_in_flight_of(in_flight.file, todo);
   }
 

@@ -5,7 +5,7 @@
 // finished realisation travels as the text of its folder (analysis/realisation.h) to the main
 // thread of rank 0, which writes it (whole or not at all) and adds it into exact sums. Exact
 // sums make the result independent of which rank or thread ran what, and reading a finished
-// realisation back from its folder gives the same numbers as running it (DESIGN.md: results do
+// realisation back from its folder gives the same numbers as running it (docs/design.md: results do
 // not depend on the split), so an ensemble killed at any moment resumes to the same bytes.
 // Memory: one engine and one realisation's measures per thread.
 #include <cstdint>
@@ -31,7 +31,7 @@ struct RunnerOptions {
   // them: the other ranks have no folder, and run a realisation they are handed from t = 0.
   double checkpoint_interval = 600;
   // A state in flight that could not be used or written, one line, from worker threads of rank 0
-  // (must be thread-safe); empty: "grainshock: warning: ..." on stderr.
+  // (must be thread-safe); empty: nothing is said (the job's MessageSink gives one).
   std::function<void(const std::string&)> on_warning;
   SnapshotHook on_snapshot;  // called from worker threads of rank 0 only; must be thread-safe
   // Called on rank 0's main thread after each realisation finished in this call, with

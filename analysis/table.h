@@ -1,6 +1,6 @@
 #pragma once
 // A time-series table: named columns of doubles, read from and written to CSV with a header line
-// (the format of timeseries.csv in DESIGN.md). Numbers are written with format_double, the
+// (the format of timeseries.csv in docs/formats.md). Numbers are written with format_double, the
 // shortest text that reads back to the same double, so a write/read round trip is exact.
 #include <cstddef>
 #include <filesystem>

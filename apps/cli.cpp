@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -280,11 +281,25 @@ CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bo
 }
 
 void add_checkpoint_minutes_option(CLI::App& sub, double& minutes) {
+  auto* every = sub.add_option_function<double>(
+      "--checkpoint-every", [&minutes](double seconds) { minutes = seconds / 60; },
+      "Wall seconds between two writes of each running realisation's state (into "
+      "realisations/in_flight), from which resume goes on after a kill (at least 50 times the "
+      "last write's duration apart); 0: never");
+  every->check(CLI::NonNegativeNumber)
+      ->option_text("SECONDS (" + format_number(60 * minutes) + ")");
   sub.add_option("--checkpoint-minutes", minutes,
-                 "Wall minutes between two writes of each running realisation's state (into "
-                 "realisations/in_flight), from which resume goes on after a kill (at least 50 "
-                 "times the last write's duration apart); 0: never")
-      ->capture_default_str();
+                 "The same in minutes (deprecated: use --checkpoint-every SECONDS)")
+      ->capture_default_str()
+      ->excludes(every);
+}
+
+void deprecated_checkpoint_minutes(const CLI::App& sub, bool quiet) {
+  if (!quiet && sub.get_option("--checkpoint-minutes")->count() > 0 &&
+      sub.get_option("--config")->count() == 0)
+    std::fprintf(stderr,
+                 "grainshock: note: --checkpoint-minutes is deprecated; use --checkpoint-every "
+                 "SECONDS\n");
 }
 
 }  // namespace gs::app

@@ -55,7 +55,12 @@ void apply_medium_default(CLI::App& sub, PhysicsConfig& c, bool box = false);
 // command without a default folder can make it required.
 CLI::Option* add_output_options(CLI::App& sub, std::string& out, bool& force, bool& quiet);
 
-// --checkpoint-minutes of the commands that run ensembles (`ensemble`, `figures`).
+// --checkpoint-every SECONDS of the commands that run ensembles (`ensemble`, `figures`), into
+// `minutes`, as run, movie and resume take it; and --checkpoint-minutes, which it replaces and
+// which still works (deprecated_checkpoint_minutes() says so).
 void add_checkpoint_minutes_option(CLI::App& sub, double& minutes);
+// Whether --checkpoint-minutes was given on the command line (not in a --config file, where our
+// own figures.toml writes it): one line on stderr then names its replacement.
+void deprecated_checkpoint_minutes(const CLI::App& sub, bool quiet);
 
 }  // namespace gs::app

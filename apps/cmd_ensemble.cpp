@@ -49,13 +49,16 @@ void add_ensemble_command(CLI::App& app) {
       "into OUT/realisations/ as it finishes: the same command into a folder holding an "
       "unfinished ensemble (killed or interrupted) runs only the missing realisations, with the "
       "same bytes as an uninterrupted run; a realisation still running goes on from the state it "
-      "keeps every --checkpoint-minutes (and at Ctrl-C) in OUT/realisations/in_flight/. Under "
+      "keeps every --checkpoint-every seconds (and at Ctrl-C) in OUT/realisations/in_flight/. "
+      "Under "
       "mpirun -n K the realisations are split over K ranks of --threads each; rank 0 writes and "
       "prints (and only its realisations keep a state). Results do not depend on K, --threads "
       "or resumes.");
   sub->callback([opt, sub] {
     apply_medium_default(*sub, opt->physics);
+    deprecated_checkpoint_minutes(*sub, opt->quiet);
     opt->progress = terminal_progress(opt->quiet);
+    opt->messages = terminal_messages();
     const int rc = finish_ensemble_command(jobs::run_ensemble_job(*opt));
     if (rc != 0) throw Exit{rc};
   });

@@ -12,6 +12,7 @@
 #include "jobs/figures_job.h"
 #include "jobs/plot.h"
 #include "sim/error.h"
+#include "sim/format.h"
 
 namespace gs::app {
 namespace {
@@ -67,16 +68,27 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
 // Where and how the job runs, not which ensembles it runs: left out of figures.toml.
 constexpr std::string_view kNotSettings[] = {"--threads", "--estimate", "--sample"};
 
+// figures.toml keeps the checkpoint interval as the minutes `resume` reads back, also when the
+// command was given it as --checkpoint-every seconds.
+std::string figures_settings(const CLI::App& sub, double checkpoint_minutes) {
+  if (sub.get_option("--checkpoint-every")->count() == 0) return settings_toml(sub, kNotSettings);
+  constexpr std::string_view left_out[] = {"--threads", "--estimate", "--sample",
+                                           "--checkpoint-minutes"};
+  return settings_toml(sub, left_out) +
+         "checkpoint-minutes = " + format_double(checkpoint_minutes) + "\n";
+}
+
 int run(FiguresFlags f, const CLI::App& sub) {
   jobs::FiguresOptions& o = f.job;
   o.mode = mode_of(f);
   o.formats = jobs::parse_plot_formats(f.format);
   o.progress = terminal_progress(o.quiet);
+  o.messages = terminal_messages();
   o.settings =
       "# grainshock figures: the job of this folder.\n"
       "# Again: grainshock figures --config figures.toml --out NEW; continue: grainshock resume "
       "DIR\n" +
-      settings_toml(sub, kNotSettings);
+      figures_settings(sub, o.checkpoint_minutes);
   const jobs::FiguresResult r = jobs::run_figures_job(o);
   if (r.interrupted) {
     if (!o.estimate)
@@ -114,9 +126,11 @@ void add_figures_command(CLI::App& app) {
   add_figures_flags(*sub, *flags);
   sub->footer(
       "A job stopped by Ctrl-C or killed goes on from the realisations it finished, and from the "
-      "state each running one keeps every --checkpoint-minutes (and at Ctrl-C), with grainshock "
+      "state each running one keeps every --checkpoint-every seconds (and at Ctrl-C), with "
+      "grainshock "
       "resume DIR, to the same files as a job never stopped (figures.toml holds its settings).");
   sub->callback([flags, sub] {
+    deprecated_checkpoint_minutes(*sub, flags->job.quiet);
     const int rc = run(*flags, *sub);
     if (rc != kExitSuccess) throw Exit{rc};
   });

@@ -154,6 +154,7 @@ void add_movie_command(CLI::App& app) {
       "movie.mp4 of its frames so far.");
   sub->callback([opt, sub] {
     opt->movie.progress = terminal_progress(opt->movie.quiet);
+    opt->movie.messages = terminal_messages();
     if (!opt->files.empty()) {
       for (std::string_view name : kSimulationFlags)
         if (sub->get_option(std::string(name))->count() > 0)
@@ -219,6 +220,7 @@ int resume_movie(const std::filesystem::path& dir, bool quiet, double checkpoint
   validate(job.physics);
   job.movie.quiet = quiet;
   job.movie.progress = terminal_progress(quiet);
+  job.movie.messages = terminal_messages();
   lock_output_dir(dir);
   remove_leftovers(dir);
   const MovieCheckpoints checkpoints{text.str(), checkpoint_every};

@@ -70,6 +70,7 @@ void add_resume_command(CLI::App& app) {
     o.quiet = opt->quiet;
     o.checkpoint_every = opt->checkpoint_every;
     o.progress = terminal_progress(o.quiet);
+    o.messages = terminal_messages();
     if (run_job(o, true).stopped) throw Exit{kExitInterrupted};
   });
 }

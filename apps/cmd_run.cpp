@@ -39,6 +39,7 @@ void add_run_command(CLI::App& app) {
     // The Fig. 1 job is the paper's box of 2.5e5 discs, framed on the box, unless --medium says.
     apply_medium_default(*sub, opt->plan.physics, apply_fig1_rule(*sub, *opt));
     opt->progress = terminal_progress(opt->quiet);
+    opt->messages = terminal_messages();
     if (run_job(*opt, false).stopped) throw Exit{kExitInterrupted};
   });
 }

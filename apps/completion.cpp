@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <thread>
 
 namespace gs::app {
 namespace {
@@ -15,7 +16,79 @@ std::string words_of(const CLI::App& app) {
   return w;
 }
 
+// A table cell: one line, with the characters a Markdown table gives meaning to escaped.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n')
+      out += ' ';
+    else if (c == '|')
+      out += "\\|";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::string flag_names(const CLI::Option& o) {
+  if (o.get_positional()) return o.get_name();
+  std::string names;
+  for (const std::string& l : o.get_lnames()) names += (names.empty() ? "--" : ", --") + l;
+  for (const std::string& s : o.get_snames()) names += (names.empty() ? "-" : ", -") + s;
+  return names;
+}
+
+// The value an option takes, as its help shows it; empty for a flag.
+std::string value_of(const CLI::Option& o) {
+  if (o.get_expected_max() == 0) return {};
+  if (!o.get_option_text().empty()) return o.get_option_text();
+  return o.get_type_name();
+}
+
+// A default that depends on the machine (the worker threads: its core count) is named so,
+// so that the reference is the same wherever it is made.
+std::string default_of(const CLI::Option& o) {
+  const std::string d = o.get_default_str();
+  if (o.get_name() == "--threads" && d == std::to_string(std::thread::hardware_concurrency()))
+    return "the core count";
+  return d;
+}
+
+std::string options_table(const CLI::App& app) {
+  std::string t = "| flag | value | default | what it does |\n|---|---|---|---|\n";
+  for (const CLI::Option* o : app.get_options()) {
+    const std::string d = default_of(*o);
+    t += "| `" + cell(flag_names(*o)) + "` | " + cell(value_of(*o)) + " | " +
+         (d.empty() ? "" : "`" + cell(d) + "`") + " | " + cell(o->get_description()) + " |\n";
+  }
+  return t;
+}
+
+// Help text as Markdown paragraphs: CLI11 footers separate them by blank lines already.
+std::string paragraphs(const std::string& text) {
+  return text.empty() ? std::string() : text + (text.back() == '\n' ? "\n" : "\n\n");
+}
+
 }  // namespace
+
+std::string markdown_reference(CLI::App& app) {
+  const auto subs = app.get_subcommands([](CLI::App*) { return true; });
+  std::string md =
+      "# Command reference\n\n"
+      "Generated from the program's command tree by `grainshock completion markdown >"
+      " docs/commands.md`;\ndo not edit it by hand (the test `CommandReference.IsCurrent` fails"
+      " when it is out of date).\n\n";
+  for (const CLI::App* sub : subs)
+    md += "- [`grainshock " + sub->get_name() + "`](#grainshock-" + sub->get_name() +
+          "): " + cell(sub->get_description()) + "\n";
+  md += "\n## grainshock\n\n" + paragraphs(app.get_description()) + options_table(app) + "\n" +
+        paragraphs(app.get_footer());
+  for (const CLI::App* sub : subs)
+    md += "## grainshock " + sub->get_name() + "\n\n" + paragraphs(sub->get_description()) +
+          options_table(*sub) + "\n" + paragraphs(sub->get_footer());
+  while (md.size() > 1 && md.ends_with("\n\n")) md.pop_back();
+  return md;
+}
 
 std::string bash_completion(CLI::App& app) {
   const auto subs = app.get_subcommands([](CLI::App*) { return true; });
@@ -53,11 +126,18 @@ std::string bash_completion(CLI::App& app) {
 }
 
 void add_completion_command(CLI::App& app) {
-  auto shell = std::make_shared<std::string>();
-  auto* sub = app.add_subcommand("completion", "Print a shell completion script (bash)");
-  sub->add_option("SHELL", *shell, "The shell: bash")->required()->check(CLI::IsMember({"bash"}));
+  auto what = std::make_shared<std::string>();
+  auto* sub = app.add_subcommand(
+      "completion", "Print a shell completion script (bash) or the command reference (markdown)");
+  sub->add_option("WHAT", *what,
+                  "bash: the completion script; markdown: every command and flag, as "
+                  "docs/commands.md")
+      ->required()
+      ->check(CLI::IsMember({"bash", "markdown"}));
   // The lambda owns the string that CLI11 writes into.
-  sub->callback([&app, shell] { std::fputs(bash_completion(app).c_str(), stdout); });
+  sub->callback([&app, what] {
+    std::fputs((*what == "bash" ? bash_completion(app) : markdown_reference(app)).c_str(), stdout);
+  });
 }
 
 }  // namespace gs::app

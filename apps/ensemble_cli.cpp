@@ -29,7 +29,7 @@ int finish_ensemble_command(const jobs::EnsembleResult& r) {
 
 int resume_ensemble_command(const std::filesystem::path& dir, int threads, bool quiet) {
   return finish_ensemble_command(
-      jobs::resume_ensemble(dir, threads, quiet, terminal_progress(quiet)));
+      jobs::resume_ensemble(dir, threads, quiet, terminal_progress(quiet), terminal_messages()));
 }
 
 }  // namespace gs::app

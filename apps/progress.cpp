@@ -106,4 +106,11 @@ jobs::ProgressFactory terminal_progress(bool quiet) {
   return [quiet] { return std::make_unique<Progress>(quiet); };
 }
 
+MessageSink terminal_messages() {
+  return [](MessageKind kind, const std::string& text) {
+    std::fprintf(stderr, "grainshock: %s%s\n", kind == MessageKind::Warning ? "warning: " : "",
+                 text.c_str());
+  };
+}
+
 }  // namespace gs::app

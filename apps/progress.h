@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "jobs/progress.h"
+#include "sim/messages.h"
 
 namespace gs::app {
 
@@ -57,5 +58,9 @@ class Progress final : public jobs::ProgressLine {
 
 // The factory that gives every pass of a job its own terminal line (none when quiet).
 jobs::ProgressFactory terminal_progress(bool quiet);
+
+// The sink that prints a job's notes and warnings on stderr, one line each ("grainshock: ...",
+// "grainshock: warning: ..."). The jobs leave out their notes when quiet, not their warnings.
+MessageSink terminal_messages();
 
 }  // namespace gs::app

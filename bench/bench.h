@@ -10,8 +10,9 @@ namespace gs::bench {
 struct Figure {
   std::string name;  // e.g. "collisions_per_cpu_second"
   double value = 0;
-  std::string unit;    // e.g. "1/s", "ms"
-  std::string target;  // the target, in words, or empty ("< 1 s", ">= 2x EDMD")
+  std::string unit;  // e.g. "1/s", "ms"
+  std::string
+      target;  // the target the case was built to meet, in words, or empty ("< 1 s", ">= 2x EDMD")
 };
 
 struct Case {

@@ -1,6 +1,6 @@
 // Wall time of `grainshock figures`: --quick measured end to end, --full estimated from a sample
-// of realisations of every case (issue 21's targets: < 3 min and < 30 min on 2 cores). The
-// command runs as a child process of this binary, exactly as a user would run it.
+// of realisations of every case (the targets the plan was sized for: < 3 min and < 30 min on 2
+// cores). The command runs as a child process of this binary, exactly as a user would run it.
 #include <unistd.h>
 #include <chrono>
 #include <cstdlib>

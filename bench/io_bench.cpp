@@ -1,4 +1,4 @@
-// Speed of the snapshot files (issue 19): reading 2.5e5 particles from extended XYZ, a LAMMPS
+// Speed of the snapshot files: reading 2.5e5 particles from extended XYZ, a LAMMPS
 // dump and GSD to the first drawn pixel (text at >= 150 MB/s on 2 cores), and writing the
 // snapshot of a 2e6-sphere run (< 1 s, or a smaller file: GSD, or only the active particles).
 #include <unistd.h>

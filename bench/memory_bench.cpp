@@ -1,5 +1,5 @@
-// Bytes per particle of the engine (issue 31 part 2): at rest, and the extra of a moving one; and
-// the unbounded medium against the box (issue 31 part 1): cost per collision and peak memory.
+// Bytes per particle of the engine: at rest, and the extra of a moving one; and
+// the unbounded medium against the box: cost per collision and peak memory.
 // Each measurement runs in a child process of its own, because a process's peak resident set
 // only grows: the parent reads the child's peak from wait4, the child sends what it holds after
 // construction and after the run (VmRSS) through a pipe. And the size and cost of a long

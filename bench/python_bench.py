@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed of the Python module against the command (issue 30's figures).
+"""Speed of the Python module against the command.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py [--binary build/apps/grainshock]
         [--t-max 3000] [--particles 250000] [--big 2000000] [--repeat 3]

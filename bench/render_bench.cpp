@@ -213,7 +213,7 @@ std::vector<Figure> inset_cost() {
           {"inset_extra_fraction", b / a - 1, "", "<= 0.05"}};
 }
 
-// The limit a frame is measured against (issue 32): the plainest banded splatter of the same
+// The limit a frame is measured against: the plainest banded splatter of the same
 // discs, written for this bench only. Per frame it maps each particle to pixels (the box
 // framed as render/discs_2.5e5 frames it), colours an active one by its speed through a
 // 256-entry table on a fixed range, sorts the discs into bands of 32 rows (a counting sort),
@@ -343,10 +343,11 @@ std::vector<Figure> plain_splat(bool antialiased, const std::string& target) {
           {"checksum", static_cast<double>(p.checksum() % 1000000), "", ""}};
 }
 
-// LAMMPS `dump image` of render/discs_2.5e5's scene (issue 32): the same 2.5e5 discs in the
-// same box, 1920x1080, type 1 inactive and type 2 active, written as PPM (no PNG encoding). The
-// cost of an image is the CPU time of `run 20` less that of `run 0` (set-up and the image every
-// run writes at its start), over 20. Skipped (exit_ok 0) when `lmp` is not on the PATH.
+// LAMMPS `dump image` of render/discs_2.5e5's scene, the program physicists compare with: the
+// same 2.5e5 discs in the same box, 1920x1080, type 1 inactive and type 2 active, written as PPM
+// (no PNG encoding). The cost of an image is the CPU time of `run 20` less that of `run 0` (set-up
+// and the image every run writes at its start), over 20. Skipped (exit_ok 0) when `lmp` is not on
+// the PATH.
 double lammps_cpu_seconds(const std::filesystem::path& dir, int images) {
   const std::string in = (dir / ("in." + std::to_string(images))).string();
   {

@@ -1,5 +1,5 @@
-// Benchmarks of `grainshock run` around the engine (issue 20): the run loop with its samples,
-// timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole (issue 32).
+// Benchmarks of `grainshock run` around the engine: the run loop with its samples,
+// timeseries.csv and snapshots, and its checkpoints; the Fig. 1 job whole.
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -113,7 +113,7 @@ std::vector<Figure> checkpoint_2e6() {
 
 // `grainshock run` with no flags: the Fig. 1 job (2.5e5 discs, r = 0.1, to paper time 50000,
 // four snapshots with their pictures and overlay, the elastic comparison, the 240-frame movie
-// with its inset), as the command runs it. The issue's figure is timing.json's pictures-and-movie
+// with its inset), as the command runs it. The figure to watch is timing.json's pictures-and-movie
 // time (the movie's share of the run's wall time, then everything after sampling); the job's
 // wall and CPU time say what the two cores did in all.
 std::vector<Figure> fig1_job() {

@@ -1,9 +1,9 @@
-// Engine benchmarks of issues 2 and 32. Reference figures on this kind of machine (2 cores):
-// Smallenburg's EDMD (2022, the Single variant, -O3 -march=native, thermostat off), started from
-// the same melted state as sim/thermal3d_phi* and measured over 20 N collisions after the same
-// warm-up, makes 0.23-0.27 million collisions per CPU-second at packing 0.2, 0.45-0.55 million
-// at 0.4 and 0.51-0.58 million at 0.5 (N = 1e5, load 1.4-2.6); DynamO 0.035-0.045 million, and
-// 0.034 million on the kick.
+// Engine benchmarks: collisions per CPU-second against a published engine. Reference figures on
+// this kind of machine (2 cores): Smallenburg's EDMD (2022, the Single variant, -O3 -march=native,
+// thermostat off), started from the same melted state as sim/thermal3d_phi* and measured over 20 N
+// collisions after the same warm-up, makes 0.23-0.27 million collisions per CPU-second at packing
+// 0.2, 0.45-0.55 million at 0.4 and 0.51-0.58 million at 0.5 (N = 1e5, load 1.4-2.6); DynamO
+// 0.035-0.045 million, and 0.034 million on the kick.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,7 +22,7 @@ namespace {
 // `run --initial thermal`: random sequential addition at packing 0.2, a simple cubic lattice
 // melted by elastic collisions above 0.38 (sim/melt.h), whose collision rate and crossings per
 // collision are already those of equilibrium. The warm-up is 2 collisions per particle; EDMD
-// is measured on the same start after the same warm-up (the note of issue 32).
+// is measured on the same start after the same warm-up, so that both start from equilibrium.
 std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
   PhysicsConfig c;
   c.dim = 3;
@@ -42,7 +42,7 @@ std::vector<Figure> thermal3d(double packing, std::int64_t particles = 100000) {
   while (sim.stats().collisions < c0 + measured) sim.run_until(t += 0.1);
   const double cpu = cpu_seconds() - cpu0;
   const double coll = static_cast<double>(sim.stats().collisions - c0);
-  // Issue 32: 3x EDMD's median of three runs at N = 1e5 (see the top of this file).
+  // 3x EDMD's median of three runs at N = 1e5 (see the top of this file).
   const double edmd = packing < 0.3 ? 0.268e6 : packing < 0.45 ? 0.462e6 : 0.536e6;
   return {{"collisions_per_cpu_second", coll / cpu, "1/s",
            particles == 100000

@@ -9,7 +9,7 @@ namespace gs {
 namespace {
 
 // The PhysicsConfig is stored as its bytes, so the tag changes with its layout: version 2 added
-// `medium` (issue 31). A file of an older layout is named as such instead of being misread.
+// `medium`. A file of an older layout is named as such instead of being misread.
 constexpr const char* kTag = "grainshock simulation 2";
 constexpr const char* kOldTag = "grainshock simulation";
 

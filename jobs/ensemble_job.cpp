@@ -28,17 +28,20 @@ EnsembleResult served(Ranks& ranks) {
 
 // Runs what the folder's job still lacks (all of it for a new folder) and writes the results.
 EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads, bool quiet,
-                       const ProgressFactory& progress_factory, Ranks& ranks) {
+                       const ProgressFactory& progress_factory, const MessageSink& messages,
+                       Ranks& ranks) {
   const fs::path rdir = dir / "realisations";
   const auto held = finished_realisations(rdir, job.spec).size();
   const std::uint64_t to_run = job.spec.realisations - held;
   if (!quiet && held > 0)
-    std::fprintf(stderr, "grainshock: resuming %s: %zu of %llu realisations finished before\n",
-                 dir.c_str(), held, static_cast<unsigned long long>(job.spec.realisations));
+    tell(messages, MessageKind::Note,
+         "resuming " + dir.string() + ": " + std::to_string(held) + " of " +
+             std::to_string(job.spec.realisations) + " realisations finished before");
   if (!quiet && std::uint64_t(ranks.size()) > to_run)
-    std::fprintf(stderr, "grainshock: %d ranks for %llu realisations to run: ranks %llu-%d idle\n",
-                 ranks.size(), static_cast<unsigned long long>(to_run),
-                 static_cast<unsigned long long>(to_run), ranks.size() - 1);
+    tell(messages, MessageKind::Note,
+         std::to_string(ranks.size()) + " ranks for " + std::to_string(to_run) +
+             " realisations to run: ranks " + std::to_string(to_run) + "-" +
+             std::to_string(ranks.size() - 1) + " idle");
 
   install_stop_handlers();
   const auto progress_line = open_progress(progress_factory);
@@ -48,6 +51,9 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
   ro.realisations_dir = rdir;
   ro.checkpoint_interval = 60 * job.checkpoint_minutes;
   ro.ranks = &ranks;
+  ro.on_warning = [&messages](const std::string& what) {
+    tell(messages, MessageKind::Warning, what);
+  };
   ro.on_progress = [&](std::uint64_t done, std::uint64_t total) {
     progress.update(double(done) / double(total), std::to_string(held + done) + " of " +
                                                       std::to_string(job.spec.realisations) +
@@ -69,16 +75,19 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
     fs::rename(rdir, gone, ec);
     if (!ec) fs::remove_all(gone, ec);
   }
-  if (!quiet)
-    std::fprintf(stderr,
-                 "grainshock: %s %llu of %llu realisations (%llu run now, in %.3g s on %s%d "
-                 "threads); results in %s\n",
-                 r.interrupted ? "interrupted with" : "finished",
-                 static_cast<unsigned long long>(r.sums.count()),
-                 static_cast<unsigned long long>(job.spec.realisations),
-                 static_cast<unsigned long long>(timing.realisations), wall,
-                 ranks.size() > 1 ? (std::to_string(ranks.size()) + " ranks x ").c_str() : "",
-                 threads, dir.c_str());
+  if (!quiet) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "%s %llu of %llu realisations (%llu run now, in %.3g s on %s%d threads); "
+                  "results in ",
+                  r.interrupted ? "interrupted with" : "finished",
+                  static_cast<unsigned long long>(r.sums.count()),
+                  static_cast<unsigned long long>(job.spec.realisations),
+                  static_cast<unsigned long long>(timing.realisations), wall,
+                  ranks.size() > 1 ? (std::to_string(ranks.size()) + " ranks x ").c_str() : "",
+                  threads);
+    tell(messages, MessageKind::Note, line + dir.string());
+  }
   return {.interrupted = r.interrupted, .exponent_table = exponent_table(r.sums, fits)};
 }
 
@@ -86,7 +95,7 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
 
 double checked_checkpoint_minutes(double minutes) {
   if (!(minutes >= 0) || !std::isfinite(minutes))
-    throw UsageError("--checkpoint-minutes must be a number of minutes >= 0 (0: never)");
+    throw UsageError("--checkpoint-every must be a number of seconds >= 0 (0: never)");
   return minutes;
 }
 
@@ -136,7 +145,7 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
     fs::remove_all(dir / "realisations", ec);  // --force starts again
   }
   write_file_atomic(dir / "ensemble.toml", job_toml(job));
-  return run_job(dir, job, o.threads, o.quiet, o.progress, ranks);
+  return run_job(dir, job, o.threads, o.quiet, o.progress, o.messages, ranks);
 }
 
 bool holds_unfinished_ensemble(const fs::path& dir) {
@@ -152,7 +161,7 @@ bool holds_unfinished_ensemble(const fs::path& dir) {
 }
 
 EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
-                               const ProgressFactory& progress) {
+                               const ProgressFactory& progress, const MessageSink& messages) {
   Ranks& ranks = Ranks::world();
   if (ranks.rank() != 0) return served(ranks);
   if (threads < 1) throw UsageError("--threads must be at least 1");
@@ -163,7 +172,7 @@ EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
     throw UserError(dir.string() + ": the ensemble is finished (nothing to resume)");
   const EnsembleJob job = read_job(dir / "ensemble.toml");
   lock_output_dir(dir);
-  return run_job(dir, job, threads, quiet, progress, ranks);
+  return run_job(dir, job, threads, quiet, progress, messages, ranks);
 }
 
 EnsembleFits write_ensemble_folder(const std::filesystem::path& dir, const EnsembleSums& sums,

@@ -13,6 +13,7 @@
 #include "analysis/ensemble_sums.h"
 #include "jobs/progress.h"
 #include "sim/config.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -23,6 +24,7 @@ struct EnsembleOptions {
   std::string out = "grainshock-ensemble";
   bool force = false, quiet = false, per_realisation = false;
   ProgressFactory progress;  // the line of the run; none by default
+  MessageSink messages;      // notes and warnings (a state in flight skipped); none by default
   int per_decade = 20, bins = 60, resamples = 1000;
   // Wall minutes between two writes of each running realisation's state into OUT/realisations/
   // (and one at Ctrl-C), from which a resumed ensemble goes on; 0: never.
@@ -30,7 +32,8 @@ struct EnsembleOptions {
   std::vector<double> snapshot_times, window;
 };
 
-// --checkpoint-minutes of `ensemble` and `figures`, checked (UsageError naming it).
+// --checkpoint-every (or --checkpoint-minutes) of `ensemble` and `figures` in minutes, checked
+// (UsageError naming the flag).
 double checked_checkpoint_minutes(double minutes);
 
 // The fit of --resamples and --window, checked against the spec (UserError naming the flag).
@@ -53,7 +56,7 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o);
 // (UserError if it holds none). Under mpirun every rank calls it; ranks other than 0 serve.
 bool holds_unfinished_ensemble(const std::filesystem::path& dir);
 EnsembleResult resume_ensemble(const std::filesystem::path& dir, int threads, bool quiet,
-                               const ProgressFactory& progress);
+                               const ProgressFactory& progress, const MessageSink& messages = {});
 
 // timing.json: the only file that differs between runs.
 struct EnsembleTiming {

@@ -119,6 +119,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     ro.threads = c.threads_of(o.threads);
     ro.realisations_dir = case_realisations(dir, c);
     ro.checkpoint_interval = 60 * o.checkpoint_minutes;
+    ro.on_warning = [&o](const std::string& what) { tell(o.messages, MessageKind::Warning, what); };
     const std::uint64_t held = finished_realisations(ro.realisations_dir, c.spec).size();
     ro.on_progress = [&](std::uint64_t done, std::uint64_t) {
       progress->update(double(done_before + held + done) / double(total),
@@ -304,11 +305,14 @@ bool estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
      << figure_number(total_quiet / 60, 3) << " min); at this load " << figure_number(total)
      << " s (" << figure_number(total / 60, 3) << " min).**\n";
   write_file_atomic(dir / "estimate.md", md.str());
-  if (!o.quiet)
-    std::fprintf(stderr,
-                 "grainshock: estimated %.4g CPU-s: %.4g s (%.3g min) wall on a quiet %d-core "
-                 "machine, %.4g s at this load\n",
-                 total_cpu, total_quiet, total_quiet / 60, o.threads, total);
+  if (!o.quiet) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "estimated %.4g CPU-s: %.4g s (%.3g min) wall on a quiet %d-core machine, %.4g s "
+                  "at this load",
+                  total_cpu, total_quiet, total_quiet / 60, o.threads, total);
+    tell(o.messages, MessageKind::Note, line);
+  }
   return true;
 }
 

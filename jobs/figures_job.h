@@ -12,6 +12,7 @@
 #include "analysis/ensemble_output.h"
 #include "jobs/figures_plan.h"
 #include "jobs/progress.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -31,6 +32,7 @@ struct FiguresOptions {
   double checkpoint_minutes = kCheckpointMinutes;
   std::vector<std::string> formats{"png"};  // of the figures (the .gp scripts write any)
   ProgressFactory progress;                 // the line of the ensembles; none by default
+  MessageSink messages;                     // notes and warnings; none by default
   // The command's settings as TOML, written to figures.toml (not by --estimate) so that the
   // job can be resumed after a kill; the command line rereads it (`grainshock resume`).
   std::string settings;

@@ -18,8 +18,9 @@ struct RunSize {
 };
 
 // The paper's r = 0.1, 0.5, 0.8 and 1, with 0.3, 0.7, 0.9 (and 0.85 in 3D) added so that phi1
-// rests on six values of r (issue 21). The paper's r < 1 have the most realisations (Figs. 3-5
-// and the plateau fits), the added r fewer (only t_c1 and exponents are read from them).
+// rests on six values of r, enough for a fit with its own error. The paper's r < 1 have the most
+// realisations (Figs. 3-5 and the plateau fits), the added r fewer (only t_c1 and exponents are
+// read from them).
 //
 // The largest r run farthest (t_c1 grows as r -> 1) and r = 1 fastest (R ~ t^(2/(d+2))); the
 // times keep the front (where the active density falls to half the ambient) below ~0.7 L/2 and
@@ -43,7 +44,7 @@ struct RunSize {
 //
 // --full has the paper's sizes (2.5e5 discs, 2e6 spheres; 4e6 for 3D r = 0.7-0.85) but not its
 // ~100 realisations per case, which would take ~2 h on 2 cores: 40 / 32 / 24 realisations in 2D
-// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. --estimate of this plan (issue 33, sample 2,
+// (paper r, added r, r = 1) and 20 / 12 / 16 in 3D. --estimate of this plan (sample 2,
 // measured at load ~7): 2641 CPU-s, 22.6 min on a quiet 2-core machine, of which 3D r = 0.7,
 // 0.8, 0.85 and the 4e6-sphere elastic blast 159, 438, 372 and 166 CPU-s, 2D 930; realisations
 // 2-5 of 3D r = 0.85 cost 13% more than the sample's 0-1. The last --full run (before 2D's
@@ -68,7 +69,7 @@ std::vector<RunSize> sizes_of(FiguresMode m, int d) {
     case FiguresMode::Full:
     default:
       if (d == 2)
-        // r = 0.95 (issue 33): phi1 nearest the elastic limit from 0.9 -> 0.95; its t_c1 is
+        // r = 0.95: phi1 nearest the elastic limit from 0.9 -> 0.95; its t_c1 is
         // ~4.6 times r = 0.9's (~3e2), the plateau from ~1e4.
         return {{0.1, 250000, 2e5, 40},  {0.3, 250000, 2e5, 32},  {0.5, 250000, 2e5, 40},
                 {0.7, 250000, 2e5, 32},  {0.8, 250000, 2e5, 40},  {0.9, 250000, 1e5, 32},
@@ -87,7 +88,7 @@ std::vector<RunSize> sizes_of(FiguresMode m, int d) {
 // 1e-6 (r = 0.1, 1e5 discs: -0.63 to -0.64 from 1e4 to 1e5 with either).
 constexpr double kCutoff3D = 1e-6;
 
-// 2D, r < 1: 1e-5 (issue 33). At the paper's 1e-4 the local slope of N_t in --full drifts from
+// 2D, r < 1: 1e-5. At the paper's 1e-4 the local slope of N_t in --full drifts from
 // 0.66 to 0.72 over [8.9e3, 2e5], the start of the delta crossover (t_c2 ~ 2.7e5 at 1e-4 by the
 // measured phi2); at 1e-6 (r = 0.1, 20 realisations) it is flat at 0.668 [0.662, 0.673]. 1e-6
 // as in 3D costs ~6 times 1e-4 in 2D (r = 0.1, 1e5 discs, t = 1e5: ~9 CPU-s per realisation
@@ -114,7 +115,7 @@ std::vector<Long3D> long3d_cases() {
   return {{0.1, 4000000, 1e6, 16}, {0.5, 8000000, 1e6, 16}};
 }
 
-// --limit (issue 31 part 3): phi1 nearest the elastic limit, from 2D and 3D r = 0.9 and 0.95 run in
+// --limit: phi1 nearest the elastic limit, from 2D and 3D r = 0.9 and 0.95 run in
 // the unbounded medium (sim/unbounded_medium.h) until E_t's local slope has plateaued. The
 // plateau rule (analysis/effective_exponent.h, asymptotic_plateau) needs a window of at least
 // half a decade ending near the last sample, so each t_max lies at least 0.5 decade past the
@@ -191,7 +192,7 @@ std::vector<LimitCase> limit_cases(FiguresMode m) {
 }
 constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
 
-// The 3D elastic blast where its local slopes reach their plateau (issue 21: d ln R / d ln t dips
+// The 3D elastic blast where its local slopes reach their plateau (d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
 // own case, at N >= 4e6 to t = 2e4 in --full, and smaller in --quick, the plateau rule deciding.
 struct Elastic3D {
@@ -301,7 +302,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     add("d3_r1_large", e, CaseRole::Elastic3D);
     for (auto& c : plan.cases)
       c.superseded_for_alpha =
-          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.restitution >= 1;
+          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.elastic();
   }
   if (long_3d) {
     for (const Long3D& s : long3d_cases()) {

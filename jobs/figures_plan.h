@@ -19,7 +19,7 @@ enum class FiguresMode { Tiny, Quick, Full };
 // Long3D (opt-in, `figures --long`): 3D r = 0.1 and 0.5 to t = 1e6, to show whether 3D alpha =
 // 1/4 is reached on a plateau that passes the drift rule; their exponents are compared, their
 // t_c1 stay out of phi1 (the paper cases of the same r give it).
-// Limit (opt-in, `figures --limit`, issue 31 part 3): 2D and 3D r = 0.9 and 0.95 in the unbounded
+// Limit (opt-in, `figures --limit`): 2D and 3D r = 0.9 and 0.95 in the unbounded
 // medium, run until E_t's local slope has plateaued; their t_c1 and energy curves join phi1's
 // readings between neighbouring r, in place of a paper case of the same (d, r).
 enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit };

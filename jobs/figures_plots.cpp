@@ -65,7 +65,7 @@ std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int 
   std::vector<const CaseResult*> out;
   for (const auto& c : all)
     if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.dim == d &&
-        (c.plan->spec.physics.restitution == 1.0) == elastic)
+        c.plan->spec.physics.elastic() == elastic)
       out.push_back(&c);
   return out;
 }
@@ -455,7 +455,7 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
       "their active particles (2D, last snapshot)'\n"
       "set xlabel 'cell packing fraction φ'\nset ylabel 'active-weighted density'\n"
       // The key below the panel and a free strip above the data for the paper's labels: inside,
-      // the key covered the r = 0.7-0.9 peaks and the two labels overlapped (issue 33).
+      // the key covered the r = 0.7-0.9 peaks and the two labels overlapped.
       "set xrange [0:1]\nset yrange [0:*]\nset offsets 0, 0, graph 0.14, 0\n"
       "set key below maxrows 4 font ',10'\nset bmargin 8\n"
       "set object 1 rect from 0.78, graph 0 to 0.82, graph 1 fc rgb '#c0c0c0' fs solid 0.4 "

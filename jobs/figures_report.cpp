@@ -28,7 +28,7 @@ std::string crossover_notes(const std::vector<CaseResult>& results) {
     const auto& p = c.plan->spec.physics;
     const bool scan = c.plan->role == CaseRole::DeltaScan;
     const bool tc1_case =
-        (c.plan->role == CaseRole::Paper || c.plan->role == CaseRole::Limit) && p.restitution < 1;
+        (c.plan->role == CaseRole::Paper || c.plan->role == CaseRole::Limit) && !p.elastic();
     if (!tc1_case && !scan) continue;
     const Crossover& tc = scan ? c.fits.tc2 : c.fits.tc1;
     if (tc.found && !scan) continue;
@@ -98,7 +98,8 @@ std::string energy_phi1_markdown(const Crossovers& crossovers) {
 }
 
 // phi1 nearest the elastic limit by each reading, weighed between the paper's value and the
-// scaling estimate (analysis/paper.h, weigh_phi1): the question, answered per reading.
+// scaling estimate (analysis/paper.h, weigh_phi1): which of the two the data favour, answered per
+// reading.
 std::string phi1_limit_markdown(const Crossovers& crossovers) {
   std::ostringstream md;
   md << "### phi1 nearest the elastic limit: which value the data favour\n\n"

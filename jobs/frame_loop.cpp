@@ -138,14 +138,16 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
     if (written > 0) {
       char png_note[48] = "";
       if (o.keep_frames) std::snprintf(png_note, sizeof png_note, ", write PNGs %.3g s", png_s);
-      std::fprintf(stderr,
-                   "grainshock: %s: %lld frames (%s, %dx%d) in %s; render %.3g s, wait for the "
-                   "encoder %.3g s%s\n",
-                   stopped ? "interrupted" : "finished", static_cast<long long>(written),
-                   movie.encoder_name().c_str(), movie.encoded_width(), movie.encoded_height(),
-                   movie.path().c_str(), render_s, encode_s, png_note);
+      char times[160];
+      std::snprintf(times, sizeof times, "; render %.3g s, wait for the encoder %.3g s%s", render_s,
+                    encode_s, png_note);
+      tell(o.messages, MessageKind::Note,
+           std::string(stopped ? "interrupted" : "finished") + ": " + std::to_string(written) +
+               " frames (" + movie.encoder_name() + ", " + std::to_string(movie.encoded_width()) +
+               "x" + std::to_string(movie.encoded_height()) + ") in " + movie.path().string() +
+               times);
     } else
-      std::fprintf(stderr, "grainshock: interrupted before the first frame; no movie written\n");
+      tell(o.messages, MessageKind::Note, "interrupted before the first frame; no movie written");
   }
   return {written, stopped};
 }

@@ -64,13 +64,14 @@ FrontMovieResult live_movie(const PhysicsConfig& physics, const FrontMovieOption
       if (!std::filesystem::exists(render::MovieParts::folder(movie)))
         throw UserError("'" + dir.string() +
                         "' holds a finished movie (movie.mp4): nothing to resume");
-      return remove_leftovers_of_finished(dir, o.quiet);  // killed before its parts went
+      return remove_leftovers_of_finished(dir, o.quiet,
+                                          o.messages);  // killed before its parts went
     }
     r = read_live_checkpoint(dir, *checkpoints, physics, p.plan, frames.size(),
                              make_follow(physics.dim, p.plan.view, o));
     // The parts are removed only once the movie is joined: the kill came after that.
     if (!render::MovieParts::on_disk(movie, r.parts) && std::filesystem::exists(movie))
-      return remove_leftovers_of_finished(dir, o.quiet);
+      return remove_leftovers_of_finished(dir, o.quiet, o.messages);
     check_parts(movie, r.part_sums);
     pass = r.pass;
     p.scans = std::move(r.scans);
@@ -254,7 +255,7 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   // What the reader assumed (masses, time from steps, wrapping), said once for the movie.
   if (!o.quiet)
     for (const auto& note : s.notes)
-      std::fprintf(stderr, "grainshock: %s: %s\n", m.first_name.c_str(), note.c_str());
+      tell(o.messages, MessageKind::Note, m.first_name + ": " + note);
   // A range that spans every frame needs them all first; that pass orders them too. Otherwise
   // the frames are drawn as given, each read once, while they prove to be in order of time.
   if (p.plan.need_range) order_frames(m);

@@ -12,6 +12,7 @@
 #include "jobs/progress.h"
 #include "render/movie_writer.h"
 #include "sim/config.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -21,8 +22,9 @@ struct FrontMovieOptions {
   std::string spacing = "log";  // lin: t-max / frames apart; log: from t_start to t-max
   double t_start = 1;
   // The stills' size. At 1280x720 the Fig. 1 job's late band has discs of about 1.4 px radius,
-  // mostly antialiased rim, whose blend with the background reads as lighter colours: issue 18's
-  // edge contrast of its last frames fell to +0.10 (+0.15 at 1920x1080, as in the stills).
+  // mostly antialiased rim, whose blend with the background reads as lighter colours: the edge
+  // contrast (render/contrast.h) of its last frames fell to +0.10 (+0.15 at 1920x1080, as in
+  // the stills).
   render::MovieOptions movie{.width = 1920, .height = 1080};
   std::string camera = "follow";  // follow: the front, smoothly; fixed: the whole periodic box
   // auto: scaled-speed for a kick (one colour is one v / v_rms in every frame), else speed.
@@ -40,6 +42,7 @@ struct FrontMovieOptions {
   std::string backend = "auto";
   bool quiet = false;
   ProgressFactory progress;  // the line of each pass; none by default
+  MessageSink messages;      // notes: frames written, what a reader assumed; none by default
   ReadOptions read;          // stored snapshots: --dt, --unwrap (--dim is the simulation's flag)
 };
 

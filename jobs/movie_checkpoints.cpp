@@ -95,15 +95,14 @@ void check_parts(const std::filesystem::path& movie, const std::vector<std::uint
   }
 }
 
-FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet) {
+FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet,
+                                              const MessageSink& messages) {
   remove_movie_checkpoints(dir);
   std::error_code ec;
   std::filesystem::remove_all(render::MovieParts::folder(dir / "movie.mp4"), ec);
   if (!quiet)
-    std::fprintf(stderr,
-                 "grainshock: %s had finished; its leftover checkpoints and parts are "
-                 "removed\n",
-                 dir.c_str());
+    tell(messages, MessageKind::Note,
+         dir.string() + " had finished; its leftover checkpoints and parts are removed");
   return {0, false};
 }
 

@@ -86,6 +86,7 @@ void check_parts(const std::filesystem::path& movie, const std::vector<std::uint
 
 // A finished movie joins its parts into movie.mp4, then removes its checkpoints, then its parts:
 // a kill after the join leaves a finished movie whose leftovers only need removing.
-FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet);
+FrontMovieResult remove_leftovers_of_finished(const std::filesystem::path& dir, bool quiet,
+                                              const MessageSink& messages);
 
 }  // namespace gs::jobs

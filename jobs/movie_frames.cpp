@@ -120,9 +120,10 @@ void StoredFrames::reorder(const std::vector<std::size_t>& order) {
 bool StoredFrames::each(ProgressLine& progress, const char* pass,
                         const std::function<void(std::size_t, const Snapshot&)>& visit) {
   // Parsing a text snapshot of 2.5e5 discs takes about as long as drawing and encoding its frame
-  // (issue 32: ~40 ms of CPU against ~6 and ~30), so two readers parse the next frames at once:
-  // reader j reads frames j, j + R, j + 2R ... into its own slot, and frames are drawn in order
-  // from slot k % R. Each reader keeps one frame ahead; more would only hold more memory.
+  // (measured on the Fig. 1 job: ~40 ms of CPU against ~6 and ~30), so two readers parse the next
+  // frames at once: reader j reads frames j, j + R, j + 2R ... into its own slot, and frames are
+  // drawn in order from slot k % R. Each reader keeps one frame ahead; more would only hold more
+  // memory.
   const std::size_t readers =
       std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 2);
   struct Slot {

@@ -28,7 +28,7 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
   style.inset = o.inset;
   style.show_inactive = o.show_inactive;
   render::check_style(style);
-  render::check_size(o.movie.width, o.movie.height, 16384);
+  render::check_size(o.movie.width, o.movie.height);
   view.width = o.movie.width;
   view.height = o.movie.height;
   view.slab = o.slab;

@@ -164,7 +164,11 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o,
   PhysicsConfig c = o.plan.physics;
   c.restitution = 1.0;
   c.t_max = 0.5 * o.plan.physics.t_max;
-  if (!o.quiet) std::fprintf(stderr, "grainshock: elastic comparison (r = 1) to t = %g\n", c.t_max);
+  if (!o.quiet) {
+    char line[64];
+    std::snprintf(line, sizeof line, "elastic comparison (r = 1) to t = %g", c.t_max);
+    tell(o.messages, MessageKind::Note, line);
+  }
   auto sim = make_simulation(c);
   while (sim->time() < c.t_max) {
     sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
@@ -260,71 +264,188 @@ std::string run_spec(const RunOptions& o) {
   return settings_toml(o, to_toml(o.plan.physics));
 }
 
-RunResult run_job(const RunOptions& o, bool resume) {
+namespace {
+
+// The checks made before anything is written: the plan, the trajectory, the picture size and
+// the movie. Returns the movie's options.
+FrontMovieOptions check_run(const RunOptions& o) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
   if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
     throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
-  if (o.png || o.compare_elastic) render::check_size(o.width, o.height, 16384);
+  if (o.png || o.compare_elastic) render::check_size(o.width, o.height);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;
   movie.progress = o.progress;
+  movie.messages = o.messages;
   movie.inset = o.movie_inset;
   if (o.movie) check_front_movie(o.plan.physics, movie);
+  return movie;
+}
 
+// A run's folder and its loop; no loop: nothing to do. `from_start`: the loop starts at
+// t = 0 (a new run, or a resumed one that had no checkpoint yet).
+struct OpenRun {
+  fs::path dir;
+  std::unique_ptr<RunLoop> loop;
+  bool from_start = true;
+};
+
+// A new run's folder (locked), cleared of an earlier run's files (with --force), with its
+// run.toml.
+OpenRun start_run(const RunOptions& o, const std::string& spec) {
+  const fs::path dir = prepare_output_dir(o.out, o.force, run_outputs(o));
+  remove_leftovers(dir);
+  write_file_atomic(dir / "run.toml", run_toml(o));
+  return {dir, std::make_unique<RunLoop>(o.plan, dir, spec)};
+}
+
+// A stopped run's loop from its checkpoint; none if the run had finished (its leftover
+// checkpoints are removed).
+OpenRun resume_run(const RunOptions& o, const std::string& spec) {
+  const fs::path dir = o.out;
+  if (finished_run(dir)) {
+    // summary.json is a run's last result: a kill after it, before the checkpoints were
+    // removed, leaves a finished run with checkpoints, which only need removing.
+    if (!fs::exists(RunLoop::checkpoint_path(dir)) &&
+        !fs::exists(RunLoop::previous_checkpoint_path(dir)))
+      // (std::string("'").append: GCC 12 -Wrestrict misfires on "'" + a string here)
+      throw UserError(std::string("'").append(dir.string()) +
+                      "' holds a finished run (summary.json): nothing to resume");
+    lock_output_dir(dir);
+    fs::remove(RunLoop::checkpoint_path(dir));
+    fs::remove(RunLoop::previous_checkpoint_path(dir));
+    if (!o.quiet)
+      tell(o.messages, MessageKind::Note,
+           dir.string() + " had finished; its leftover checkpoints are removed");
+    return {dir, nullptr};
+  }
+  lock_output_dir(dir);
+  if (!fs::exists(RunLoop::checkpoint_path(dir)) &&
+      !fs::exists(RunLoop::previous_checkpoint_path(dir))) {
+    // Killed before its first checkpoint (in its set-up): nothing it wrote can be gone on
+    // from, and its run.toml is all a run needs, so it starts again from t = 0 and ends with
+    // the bytes of a run never stopped.
+    clear_run_outputs(dir, o);
+    remove_leftovers(dir);
+    if (!o.quiet)
+      tell(o.messages, MessageKind::Note,
+           dir.string() +
+               " holds no checkpoint (stopped during its set-up): the run starts again from t = 0");
+    return {dir, std::make_unique<RunLoop>(o.plan, dir, spec)};
+  }
+  auto loop = RunLoop::resume(o.plan, dir, spec);
+  remove_leftovers(dir);
+  // The snapshot a stop wrote of its moment is not one of the run's.
+  const double t = loop->simulation().time();
+  const auto scheduled = snapshot_times(o.plan);
+  if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
+    fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
+  return {dir, std::move(loop), false};
+}
+
+// Sampling while the movie is drawn at the frame times between the samples. Sets `movie_s`
+// to the wall time the movie took beside the engine's. False if stopped.
+bool sample_with_movie(RunLoop& loop, const fs::path& dir, const RunOptions& o,
+                       const FrontMovieOptions& movie, double& movie_s) {
+  if (!o.quiet) tell(o.messages, MessageKind::Note, "the run, drawing the movie of the front");
+  const RunTiming before = loop.timing();
+  const auto t1 = std::chrono::steady_clock::now();
+  bool stopped = write_run_movie(loop, o.plan.physics, movie, dir).stopped;
+  const RunTiming& after = loop.timing();
+  movie_s = seconds_since(t1) - (after.run - before.run) - (after.snapshots - before.snapshots) -
+            (after.checkpoints - before.checkpoints);
+  if (!stopped) stopped = !loop.run();  // the frames end at t-max: its sample, if any
+  if (!stopped) loop.set_stage(kMovieMade);
+  return !stopped;
+}
+
+// Sampling with a progress line. False if stopped.
+bool sample_with_progress(RunLoop& loop, const RunOptions& o) {
+  const double t_max = o.plan.physics.t_max;
+  const auto progress_line = open_progress(o.progress);
+  ProgressLine& progress = *progress_line;
+  const auto t1 = std::chrono::steady_clock::now();
+  const auto events0 = loop.simulation().stats().events;
+  loop.on_sample = [&](const Sample& s) {
+    char what[160];
+    std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
+                  static_cast<long long>(s.active),
+                  static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
+    progress.update(s.t / t_max, what);
+  };
+  const bool stopped = !loop.run();
+  progress.done();
+  if (!stopped) loop.set_stage(kAfterSampling);
+  return !stopped;
+}
+
+// The sampling stage, if the run is in it. A new run draws its movie as it goes; a resumed one
+// has passed frames already, and replays the run for its movie after sampling. A stop writes
+// a snapshot of its moment (a look at the data may want it; a resume removes it). False if
+// stopped.
+bool sample(RunLoop& loop, const fs::path& dir, const RunOptions& o, bool from_start,
+            const FrontMovieOptions& movie, double& movie_s) {
+  if (loop.stage() != kSampling) return true;
+  const bool done = o.movie && from_start && movie_in_one_pass(o.plan.physics, movie)
+                        ? sample_with_movie(loop, dir, o, movie, movie_s)
+                        : sample_with_progress(loop, o);
+  if (!done) {
+    loop.write_run_snapshot(loop.simulation().time());
+  } else {
+    loop.write_checkpoint();
+  }
+  return done;
+}
+
+// What comes after sampling: the trajectory, the pictures, the movie (unless drawn during
+// sampling) and the elastic comparison once its run ends. False if stopped.
+bool after_sampling(const RunLoop& loop, const fs::path& dir, const RunOptions& o,
+                    const FrontMovieOptions& movie, std::future<std::optional<Snapshot>>& elastic,
+                    bool stopped) {
+  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
+  if (!stopped && o.png) stopped = !write_pictures(dir, o);
+  if (!stopped && o.movie && loop.stage() != kMovieMade) {
+    // Runs are reproducible from (config, seed): the movie replays this very trajectory.
+    if (!o.quiet) tell(o.messages, MessageKind::Note, "movie of the front");
+    stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
+  }
+  if (elastic.valid()) {
+    const std::optional<Snapshot> s = elastic.get();
+    if (!s)
+      stopped = true;
+    else if (!stopped)
+      write_elastic_comparison(dir, o, *s);
+  }
+  return !stopped;
+}
+
+// timing.json, then summary.json (the last result); the checkpoints go once the run is whole.
+void finish_run(RunLoop& loop, const fs::path& dir, const RunOptions& o, double after_s,
+                double movie_s, bool stopped) {
+  loop.finish_checkpoint();  // a run stopped in its pictures resumes from it
+  const Simulation& sim = loop.simulation();
+  write_file_atomic(dir / "timing.json", timing_json(loop.timing(), after_s, movie_s, sim));
+  write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));
+  if (!stopped) loop.remove_checkpoints();
+  if (o.quiet) return;
+  char line[160];
+  std::snprintf(line, sizeof line, "%s %s: %lld collisions in %.3g s; results in ",
+                stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
+                static_cast<long long>(sim.stats().collisions), loop.timing().run);
+  tell(o.messages, MessageKind::Note,
+       line + dir.string() +
+           (stopped ? " (continue with: grainshock resume " + dir.string() + ")" : ""));
+}
+
+}  // namespace
+
+RunResult run_job(const RunOptions& o, bool resume) {
+  const FrontMovieOptions movie = check_run(o);
   const std::string spec = run_spec(o);
   // Before the set-up, so that Ctrl-C during it stops the run at its first checkpoint.
   install_stop_handlers();
-  fs::path dir;
-  bool from_start = !resume;  // a resumed folder without a checkpoint starts again too
-  std::unique_ptr<RunLoop> loop;
-  if (resume) {
-    dir = o.out;
-    if (finished_run(dir)) {
-      // summary.json is a run's last result: a kill after it, before the checkpoints were
-      // removed, leaves a finished run with checkpoints, which only need removing.
-      if (!fs::exists(RunLoop::checkpoint_path(dir)) &&
-          !fs::exists(RunLoop::previous_checkpoint_path(dir)))
-        // (std::string("'").append: GCC 12 -Wrestrict misfires on "'" + a string here)
-        throw UserError(std::string("'").append(dir.string()) +
-                        "' holds a finished run (summary.json): nothing to resume");
-      lock_output_dir(dir);
-      fs::remove(RunLoop::checkpoint_path(dir));
-      fs::remove(RunLoop::previous_checkpoint_path(dir));
-      if (!o.quiet)
-        std::fprintf(stderr, "grainshock: %s had finished; its leftover checkpoints are removed\n",
-                     dir.c_str());
-      return {};
-    }
-    lock_output_dir(dir);
-    from_start = !fs::exists(RunLoop::checkpoint_path(dir)) &&
-                 !fs::exists(RunLoop::previous_checkpoint_path(dir));
-    if (from_start) {
-      // Killed before its first checkpoint (in its set-up): nothing it wrote can be gone on
-      // from, and its run.toml is all a run needs, so it starts again from t = 0 and ends with
-      // the bytes of a run never stopped.
-      clear_run_outputs(dir, o);
-      if (!o.quiet)
-        std::fprintf(stderr,
-                     "grainshock: %s holds no checkpoint (stopped during its set-up): the run "
-                     "starts again from t = 0\n",
-                     dir.c_str());
-    } else {
-      loop = RunLoop::resume(o.plan, dir, spec);
-      remove_leftovers(dir);
-      // The snapshot a stop wrote of its moment is not one of the run's.
-      const double t = loop->simulation().time();
-      const auto scheduled = snapshot_times(o.plan);
-      if (std::none_of(scheduled.begin(), scheduled.end(), [&](double s) { return s == t; }))
-        fs::remove(dir / "snapshots" / snapshot_name(t, o.plan.snapshots.format));
-    }
-  } else {
-    dir = prepare_output_dir(o.out, o.force, run_outputs(o));
-    write_file_atomic(dir / "run.toml", run_toml(o));
-  }
-  if (from_start) {
-    remove_leftovers(dir);
-    loop = std::make_unique<RunLoop>(o.plan, dir, spec);
-  }
+  const auto [dir, loop, from_start] = resume ? resume_run(o, spec) : start_run(o, spec);
+  if (!loop) return {};
   loop->checkpoint_every = o.checkpoint_every;
 
   // The elastic run needs nothing of this one: it takes the second core from the start, while
@@ -339,71 +460,11 @@ RunResult run_job(const RunOptions& o, bool resume) {
   if (o.compare_elastic)
     elastic =
         std::async(std::launch::async, run_elastic_comparison, std::cref(o), std::cref(abandoned));
-  const double t_max = o.plan.physics.t_max;
-  bool stopped = false;
   double movie_s = 0;
-  if (loop->stage() == kSampling) {
-    // A new run draws its movie as it goes, at the frame times between its samples; a resumed
-    // one has passed frames already, and replays the run for its movie after sampling.
-    if (o.movie && from_start && movie_in_one_pass(o.plan.physics, movie)) {
-      if (!o.quiet) std::fprintf(stderr, "grainshock: the run, drawing the movie of the front\n");
-      const RunTiming before = loop->timing();
-      const auto t1 = std::chrono::steady_clock::now();
-      stopped = write_run_movie(*loop, o.plan.physics, movie, dir).stopped;
-      const RunTiming& after = loop->timing();
-      movie_s = seconds_since(t1) - (after.run - before.run) -
-                (after.snapshots - before.snapshots) - (after.checkpoints - before.checkpoints);
-      if (!stopped) stopped = !loop->run();  // the frames end at t-max: its sample, if any
-      if (!stopped) loop->set_stage(kMovieMade);
-    } else {
-      const auto progress_line = open_progress(o.progress);
-      ProgressLine& progress = *progress_line;
-      const auto t1 = std::chrono::steady_clock::now();
-      const auto events0 = loop->simulation().stats().events;
-      loop->on_sample = [&](const Sample& s) {
-        char what[160];
-        std::snprintf(what, sizeof what, "t = %.4g of %.4g, %lld active, %.3g events/s", s.t, t_max,
-                      static_cast<long long>(s.active),
-                      static_cast<double>(s.events - events0) / std::max(1e-9, seconds_since(t1)));
-        progress.update(s.t / t_max, what);
-      };
-      stopped = !loop->run();
-      progress.done();
-      if (!stopped) loop->set_stage(kAfterSampling);
-    }
-    if (stopped) {  // a look at the data may want the moment too; a resume removes it
-      loop->write_run_snapshot(loop->simulation().time());
-    } else {
-      loop->write_checkpoint();
-    }
-  }
+  bool stopped = !sample(*loop, dir, o, from_start, movie, movie_s);
   const auto t2 = std::chrono::steady_clock::now();
-  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
-  if (!stopped && o.png) stopped = !write_pictures(dir, o);
-  if (!stopped && o.movie && loop->stage() != kMovieMade) {
-    // Runs are reproducible from (config, seed): the movie replays this very trajectory.
-    if (!o.quiet) std::fprintf(stderr, "grainshock: movie of the front\n");
-    stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
-  }
-  if (elastic.valid()) {
-    const std::optional<Snapshot> s = elastic.get();
-    if (!s)
-      stopped = true;
-    else if (!stopped)
-      write_elastic_comparison(dir, o, *s);
-  }
-  loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
-  const Simulation& sim = loop->simulation();
-  write_file_atomic(dir / "timing.json",
-                    timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
-  write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
-  if (!stopped) loop->remove_checkpoints();
-  if (!o.quiet)
-    std::fprintf(
-        stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
-        stopped ? "interrupted" : "finished", to_string(o.plan.physics.initial),
-        static_cast<long long>(sim.stats().collisions), loop->timing().run, dir.c_str(),
-        stopped ? (" (continue with: grainshock resume " + dir.string() + ")").c_str() : "");
+  stopped = !after_sampling(*loop, dir, o, movie, elastic, stopped);
+  finish_run(*loop, dir, o, seconds_since(t2), movie_s, stopped);
   return {.stopped = stopped};
 }
 

@@ -8,6 +8,7 @@
 
 #include "jobs/progress.h"
 #include "jobs/run_loop.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -26,6 +27,7 @@ struct RunOptions {
   bool force = false, quiet = false;
   double checkpoint_every = 300;
   ProgressFactory progress;  // the line of each pass; none by default
+  MessageSink messages;      // notes (what the run is doing, where its results are); none
 };
 
 // The paper's Fig. 1 set for the physics given: t-max = paper time 50000, snapshots and

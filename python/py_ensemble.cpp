@@ -4,6 +4,9 @@
 // asks the runner to stop (sim/stop.h) and raises KeyboardInterrupt once it has.
 #include <chrono>
 #include <future>
+#include <mutex>
+#include <string>
+#include <vector>
 
 #include "analysis/ensemble_fits.h"
 #include "analysis/ensemble_runner.h"
@@ -43,6 +46,14 @@ pb::dict ensemble(int realisations, int threads, int per_decade, int bins, int r
   const FitOptions fit = jobs::fit_options(resamples, window, spec);
   RunnerOptions options;
   options.threads = threads;
+  // The runner's warnings come from its worker threads; they are kept and given to Python's
+  // warnings module from this thread, holding the GIL, once the ensemble is done.
+  std::mutex warned_mutex;
+  std::vector<std::string> warned;
+  options.on_warning = [&](const std::string& what) {
+    std::lock_guard lock(warned_mutex);
+    warned.push_back(what);
+  };
   // The runner polls the stop flag; Python's SIGINT handler stays in place, and a Ctrl-C seen
   // by PyErr_CheckSignals is passed on to the runner as a stop request.
   auto job = std::async(std::launch::async, [&] { return run_ensemble(spec, options); });
@@ -58,6 +69,8 @@ pb::dict ensemble(int realisations, int threads, int per_decade, int bins, int r
     }
   }
   RunnerResult r = job.get();
+  for (const std::string& w : warned)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw pb::error_already_set();
   if (interrupted) {
     detail::stop_signal.store(0);
     throw pb::error_already_set();

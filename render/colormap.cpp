@@ -57,8 +57,8 @@ double luminance(double r, double g, double b) {
 
 // The least luminance contrast ratio with the background a colour of the map keeps. WCAG's 3:1
 // for graphics leaves magma on white only up to L* 62, too little lightness for a 4:2:0 movie,
-// whose colour detail rides on luminance: on the Fig. 1 job (issue 18's edge contrast, median
-// over 24 sectors) the whole map gives stills 0.22/0.21/0.22/0.11 at t_paper 5000..50000 and
+// whose colour detail rides on luminance: on the Fig. 1 job (render/contrast.h's edge contrast,
+// median over 24 sectors) the whole map gives stills 0.22/0.21/0.22/0.11 at t_paper 5000..50000 and
 // movie frames >= 0.14; 3:1 gives stills >= 0.14 but movie frames down to 0.10; 1.5:1 (magma
 // up to L* 85) stills >= 0.15 and movie frames >= 0.11.
 constexpr double kMinContrast = 1.5;

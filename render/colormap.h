@@ -28,8 +28,8 @@ class Colormap {
   // end on white (1.1:1) would draw the fastest particles, the inner edge a picture is for, as
   // the least visible; and the antialiased rims of few-pixel discs in a light colour stay near
   // the map while those of dark ones leave it, so light regions weigh more in what the eye
-  // (and issue 18's measure) reads as particles. Magma on white keeps [0, 0.88], on the dark
-  // background [0.23, 1]. at(0) and at(1) are then the ends of the part kept.
+  // (and render/contrast.h's measure) reads as particles. Magma on white keeps [0, 0.88], on the
+  // dark background [0.23, 1]. at(0) and at(1) are then the ends of the part kept.
   Colormap against(Rgb8 background) const;
   // Where at(0) and at(1) lie on the full map.
   std::pair<double, double> span() const { return {lo_, hi_}; }

@@ -1,9 +1,9 @@
 #pragma once
-// How well a picture shows the fast inner edge of the band (issue 18's measure): take the
-// coloured particle pixels, their centroid and 24 angular sectors around it; in each sector
-// compare the points in the inner quarter of the sector's radial spread with those in its outer
-// quarter. The inner quarter's mean colormap position (0..1) minus the outer quarter's, median
-// over the sectors, is positive when the inner edge is drawn in higher colours.
+// How well a picture shows the fast inner edge of the band (the measure the default colours were
+// chosen by): take the coloured particle pixels, their centroid and 24 angular sectors around it;
+// in each sector compare the points in the inner quarter of the sector's radial spread with those
+// in its outer quarter. The inner quarter's mean colormap position (0..1) minus the outer
+// quarter's, median over the sectors, is positive when the inner edge is drawn in higher colours.
 #include <vector>
 
 #include "render/colormap.h"

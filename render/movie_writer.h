@@ -28,7 +28,7 @@ struct MovieOptions {
   // H.264 constant rate factor, 0 (lossless) .. 51; 18 is visually lossless for our frames.
   // mpeg4 has no CRF: it uses the fixed quantiser qscale = crf / 6 (18 -> 3, a high quality).
   int crf = 18;
-  // libx264 speed/size trade-off. On the Fig. 1 job's frames at CRF 18 (issue 32), ultrafast
+  // libx264 speed/size trade-off. On the Fig. 1 job's frames at CRF 18, ultrafast
   // encodes a 1080p frame in 6 ms of CPU where veryfast took 17, with a higher PSNR against the
   // pictures (57 dB against 47), for a file 2.5 times as large (7.5 MB for the 8 s movie).
   std::string preset = "ultrafast";

@@ -34,7 +34,7 @@ Backend settle_choices(RenderChoices& c) {
   if (!(view.fov > 0 && view.fov < 180)) throw UsageError("--fov must be between 0 and 180");
   if (view.slab < 0 || view.distance < 0) throw UsageError("--slab and --distance must be >= 0");
   if (c.inset && c.no_inset) throw UsageError("--inset and --no-inset exclude each other");
-  check_size(view.width, view.height, 16384);
+  check_size(view.width, view.height);
   check_style(st);
   return parse_backend(c.backend);
 }

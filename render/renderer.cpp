@@ -18,8 +18,6 @@
 namespace gs::render {
 namespace {
 
-constexpr int kHardSizeLimit = 16384;
-
 // What the CPU splats keep from frame to frame (filled anew each frame, never shrunk), so that a
 // movie's frames touch no fresh pages.
 // The coverage of one disc radius at kPhases x kPhases sub-pixel positions of the centre, for
@@ -501,8 +499,8 @@ struct Renderer::Impl {
     gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &v);
     GLint dims[2] = {0, 0};
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
-    max_size = std::min({kHardSizeLimit, static_cast<int>(v), static_cast<int>(dims[0]),
-                         static_cast<int>(dims[1])});
+    max_size = std::min(
+        {kMaxImageSide, static_cast<int>(v), static_cast<int>(dims[0]), static_cast<int>(dims[1])});
     gl.GetIntegerv(GL_MAX_SAMPLES, &v);
     max_samples = v;
     GLfloat range[2] = {1, 1};

@@ -54,7 +54,7 @@ class Renderer {
   void recycle(Image&& done);
 
   const RenderInfo& last() const;
-  // Largest width or height this context can render (and at most 16384).
+  // Largest width or height this context can render (and at most kMaxImageSide).
   int max_size() const;
   const char* backend_name() const;
 
@@ -63,7 +63,11 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
+// The largest width or height of a picture or movie frame any command accepts; a context may
+// allow less (Renderer::max_size).
+inline constexpr int kMaxImageSide = 16384;
+
 // Throws UserError unless 0 < width, height <= limit.
-void check_size(int width, int height, int limit);
+void check_size(int width, int height, int limit = kMaxImageSide);
 
 }  // namespace gs::render

@@ -37,6 +37,9 @@ struct PhysicsConfig {
   double box() const;
   // Converts simulation time (diameter / v0) to the paper's unit 1/(v0 n^(1/d)).
   double paper_time(double t) const;
+  // Elastic collisions (r = 1; validate() refuses r > 1): the paper's other regime, alpha =
+  // 2/(d+2). Every choice between the two regimes asks this, never an exact float comparison.
+  bool elastic() const { return restitution >= 1.0; }
   // Sticky coalescence: the exact 1D r = 0 limit of the paper.
   bool sticky() const { return dim == 1 && restitution == 0.0; }
 };

@@ -480,18 +480,18 @@ void Engine<D>::gather(std::int32_t i, Neighbours& nb, ForEachCell&& for_each_ce
     for (std::int32_t j = first[c]; j >= 0; j = next_[j]) {
       if (j == i) continue;
       __builtin_prefetch(&kin_[j]);
-      GS_CHECK(count < Neighbours::kMax);
+      GS_DCHECK(count < Neighbours::kMax);  // the geometry bounds it (sim/engine.h)
       nb.who[count++] = j;
     }
+  // Once per search in Release: an overrun of `who` lands in `rest`, filled only after this.
+  GS_CHECK(count <= Neighbours::kMax);
   nb.count = count;
   // A cell's resting particles are one run of memory: their lines are requested as listed.
   int rest = 0;
   for (int c = 0; c < resting_cells; ++c) {
     if constexpr (kRests) __builtin_prefetch(rest_.positions() + rest_begin[c]);
-    for (std::int32_t r = rest_begin[c]; r < rest_end[c]; ++r) {
-      GS_CHECK(count + rest < Neighbours::kMax);
-      nb.rest[rest++] = r;
-    }
+    GS_CHECK(count + rest + (rest_end[c] - rest_begin[c]) <= Neighbours::kMax);  // per cell
+    for (std::int32_t r = rest_begin[c]; r < rest_end[c]; ++r) nb.rest[rest++] = r;
   }
   nb.rest_count = rest;
 }

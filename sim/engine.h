@@ -42,7 +42,7 @@
 
 namespace gs {
 
-// Observables of the moving particles at one instant, with the definitions of DESIGN.md.
+// Observables of the moving particles at one instant, with the definitions of docs/design.md.
 struct Sample {
   double t = 0;
   std::int64_t active = 0;  // particles that have collided at least once
@@ -219,7 +219,7 @@ class Engine final : public Simulation {
   std::vector<std::int32_t> tag_;  // the particle's index in the initial state and in snapshots
   // Box crossings per record, for every record the engine may hold, in zero pages: a kick's
   // front never reaches the box's edge (and the unbounded medium has none), so its images are
-  // never written and cost nothing (12 B a moving sphere, issue 31 part 2); a thermal gas
+  // never written and cost nothing (12 B a moving sphere); a thermal gas
   // touches them as its particles wrap.
   using Image = std::array<std::int32_t, D>;
   ZeroPages<Image> image_;

@@ -34,6 +34,18 @@ class UsageError : public UserError {
       ::gs::check_failed(#cond, __FILE__, __LINE__, std::string()); \
   } while (0)
 
+// GS_DCHECK: a GS_CHECK for hot loops (once per neighbour, per event), compiled only into builds
+// without NDEBUG (Debug); Release (and RelWithDebInfo) keeps GS_CHECK wherever a broken
+// invariant would make a run's results wrong, and uses this where a cheaper check outside the
+// loop, or the geometry itself, already guards the same invariant.
+#ifdef NDEBUG
+#define GS_DCHECK(cond) \
+  do {                  \
+  } while (false && (cond))
+#else
+#define GS_DCHECK(cond) GS_CHECK(cond)
+#endif
+
 #define GS_CHECK_MSG(cond, msg)                             \
   do {                                                      \
     if (!(cond)) [[unlikely]]                               \

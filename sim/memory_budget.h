@@ -4,8 +4,8 @@
 // --t-max depends on t_c1 and the exponents the run is there to measure, so an unbounded run is
 // not refused on a guess: each engine takes the bytes of a cell's particles from the budget
 // before making them, and ends its run with a UserError naming the memory when the budget cannot
-// give them (issue 31: "the run ends at --t-max, or with a clear message when memory would run
-// out"). Its engine gives everything back when it is destroyed.
+// give them: a run ends at --t-max, or with a clear message when memory would run out. Its
+// engine gives everything back when it is destroyed.
 #include <atomic>
 #include <cstdint>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The particles of a kick that nothing has hit yet: a position each, kept cell by cell so that a
-// neighbour search reads a cell's resting particles as one run of memory (issue 31 part 2). A
+// neighbour search reads a cell's resting particles as one run of memory. A
 // resting sphere costs its position, its tag and its cell's share of the run table: 36 B in 3D
 // at n = 0.25, where it cost 161 B as an engine record (sim/bytes_per_particle_3d).
 //

@@ -116,8 +116,8 @@ TEST(EffectiveExponent, FlatSlopesKeepTheirWholePlateauWhateverTheNoise) {
 }
 
 TEST(EffectiveExponent, SlowDriftThatOldTolerancePassedIsRejected) {
-  // The 2D r < 1 N_t of issue 33: a slope drifting from 0.66 at 1e4 to 0.72 at 2e5, i.e.
-  // linear in ln t, s = s0 + g ln t with g = 0.06 / ln 20. Over any half decade it moves by
+  // The 2D r < 1 N_t of --full at delta = 1e-4: a slope drifting from 0.66 at 1e4 to 0.72 at 2e5,
+  // i.e. linear in ln t, s = s0 + g ln t with g = 0.06 / ln 20. Over any half decade it moves by
   // 0.023, which intervals of +-(0.02 + band) absorbed; the drift is resolved by 20
   // realisations with 0.5% noise, so no window is a plateau.
   const double g = 0.06 / std::log(20.0), s0 = 0.66 - g * std::log(1e4);
@@ -190,7 +190,7 @@ TEST(EffectiveExponent, SlopeThatDipsAndRecoversIsNoPlateauAcrossTheDip) {
 }
 
 TEST(EffectiveExponent, SlopeThatSwingsAcrossTheWindowIsNoPlateau) {
-  // The 3D R_t of --limit's r = 0.95 (issue 31): over four decades the slope swings by +-0.025
+  // The 3D R_t of --limit's r = 0.95: over four decades the slope swings by +-0.025
   // about 0.3, a period of 4/3 decade, so that the thirds of the whole window have equal means
   // (no drift, no curvature) while the band is +-0.005. No window spanning a full swing is flat.
   const double period = 4.0 / 3.0 * std::log(10.0), amplitude = 0.025;
@@ -212,7 +212,7 @@ TEST(EffectiveExponent, SlopeThatSwingsAcrossTheWindowIsNoPlateau) {
 
 TEST(EffectiveExponent, CorrectionToScalingRecoversTheAsymptoticExponent) {
   // X = t^b (1 + c t^-omega): over [1e2, 1e4] the local slope is still c omega t^-omega ~ 0.03
-  // to 0.003 short of b (the 2D E_t of issue 33); the fit with the correction term finds b.
+  // to 0.003 short of b (the 2D E_t of --quick); the fit with the correction term finds b.
   const double b = -2.0 / 3.0, c = 1.5, omega = 0.5;
   const auto t = log_grid(1, 1e4, 20);
   const auto x = ensemble_of(

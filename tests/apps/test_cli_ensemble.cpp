@@ -311,7 +311,7 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
 TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
   const std::string job =
-      "ensemble " + kSlow + " --realisations 6 --threads 1 --checkpoint-minutes 0.5 --out ";
+      "ensemble " + kSlow + " --realisations 6 --threads 1 --checkpoint-every 30 --out ";
   ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
   const pid_t pid = spawn_grainshock(job + stopped.string());
   ASSERT_GT(pid, 0);

@@ -1,4 +1,4 @@
-// Files of a run as others read them and as we read them back (issue 28, items 3, 4 and 7): a
+// Files of a run as others read them and as we read them back: a
 // run's --png frame drawn again by `render` from its snapshot, byte for byte; --trajectory as
 // one sequence for render --frame, movie, gsd.hoomd and ASE (where /usr/bin/python3 has them);
 // frames labelled by step without a time, and --dt.

@@ -174,6 +174,10 @@ TEST(CliUsage, OutOfRangeValuesExitTwoInEverySubcommand) {
       {"compare --diff " + (dir / "d.gif").string() + " " + png + " " + png, "d.gif"},
       {"figures --format jpg --out " + (dir / "f1").string(), "--format"},
       {"figures --threads 0 --out " + (dir / "f2").string(), "--threads"},
+      {"figures --checkpoint-every -1 --out " + (dir / "f3").string(), "--checkpoint-every"},
+      {"ensemble --checkpoint-every -1 --out " + (dir / "e4").string(), "--checkpoint-every"},
+      {"ensemble --checkpoint-every 30 --checkpoint-minutes 1 --out " + (dir / "e5").string(),
+       "--checkpoint-"},
       {"bench --repeat 0", "--repeat"},
       {"merge --resamples 3 " + (dir / "ok").string() + " --out " + (dir / "g1").string(),
        "--resamples"},
@@ -185,8 +189,8 @@ TEST(CliUsage, OutOfRangeValuesExitTwoInEverySubcommand) {
     EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
   }
-  for (const char* out : {"r1", "r2", "r3", "r4", "e1", "e2", "e3", "m1", "m2", "m3", "m4", "f1",
-                          "f2", "g1", "a.png", "a.jpg"})
+  for (const char* out : {"r1", "r2", "r3", "r4", "e1", "e2", "e3", "e4", "e5", "m1", "m2", "m3",
+                          "m4", "f1", "f2", "f3", "g1", "a.png", "a.jpg"})
     EXPECT_FALSE(fs::exists(dir / out)) << out;
 }
 

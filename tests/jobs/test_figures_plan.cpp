@@ -1,4 +1,5 @@
-// The plan of `grainshock figures` against issue 21's requirements on what it runs.
+// The plan of `grainshock figures` against what its readings need: enough r for phi1, sizes that
+// keep each front inside its box, cutoffs whose crossover comes after the run.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -78,12 +79,12 @@ TEST(FiguresPlan, FullRunsTheLargeElasticBlast) {
   const auto& p = large.front()->spec.physics;
   EXPECT_EQ(p.dim, 3);
   EXPECT_EQ(p.restitution, 1.0);
-  EXPECT_GE(p.particles, 4000000);  // issue 21: N >= 4e6 to t >= 2e4
+  EXPECT_GE(p.particles, 4000000);  // the 3D elastic slopes plateau by 2e4 at N = 4e6
   EXPECT_GE(p.t_max, 2e4);
 }
 
 TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
-  // Issue 33: at delta = 1e-4 the 2D N_t slope drifts into the delta crossover before t_max.
+  // At delta = 1e-4 the 2D N_t slope drifts into the delta crossover before t_max.
   // t_c2 ~ 2.2e4 (5e-4 / delta)^(3/2) (measured in the delta scan, 2D r = 0.1) must come at
   // least 10 times after every 2D r < 1 paper run; 3D keeps 1e-6 (its E_t slope turns at 1e-4).
   // The delta scan keeps its larger cutoffs.
@@ -109,7 +110,7 @@ TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
       EXPECT_LE(p.cutoff, 1e-6);
       EXPECT_GE(p.t_max, 1e6);
       EXPECT_GE(c->spec.realisations, 16u);
-      // The front stays below 0.6 L/2 (issue 33): by t = 1e6 it reached 0.59 L/2 (r = 0.1) and
+      // The front stays below 0.6 L/2: by t = 1e6 it reached 0.59 L/2 (r = 0.1) and
       // 0.72 L/2 (r = 0.5) of a box of 4e6 spheres (`figures --quick --long`, 81eb19d).
       const double half_l4 = 0.5 * std::cbrt(4e6 / p.density);
       const double front = (p.restitution < 0.3 ? 0.59 : 0.72) * half_l4;
@@ -119,7 +120,7 @@ TEST(FiguresPlan, RLessThanOneRunsWithASmallCutoffAndLongRunsAreOptIn) {
 }
 
 TEST(FiguresPlan, LimitCasesAreUnboundedPastTheirPlateauAndFitInMemory) {
-  // Issue 31 part 3: 2D and 3D r = 0.9 and 0.95, opt-in, in the unbounded medium. Each but 3D
+  // --limit: 2D and 3D r = 0.9 and 0.95, opt-in, in the unbounded medium. Each but 3D
   // r = 0.95 runs at least half a decade past its expected plateau start (the plateau rule's
   // shortest window), 2D r = 0.95's start at least r = 0.9's times ((1 - 0.95^2) /
   // (1 - 0.9^2))^-2.25; 3D r = 0.95 (no plateau: 2.4 days) runs until its E_t has fallen to
@@ -156,7 +157,7 @@ TEST(FiguresPlan, LimitCasesAreUnboundedPastTheirPlateauAndFitInMemory) {
     for (int d : {2, 3}) ASSERT_TRUE(at(d, 0.9) && at(d, 0.95)) << d;
     const double ratio = std::pow((1 - 0.95 * 0.95) / (1 - 0.9 * 0.9), -2.25);
     EXPECT_GE(at(2, 0.95)->plateau_start, ratio * at(2, 0.9)->plateau_start * 0.99);
-    // 3D r = 0.9 "needs t ~ 1e6" (issue 31).
+    // 3D r = 0.9 needs t ~ 1e6 for E_t's slope to plateau.
     EXPECT_GE(at(3, 0.9)->spec.physics.t_max, 1e6);
     // --limit-dim keeps one dimension's cases, the same ones.
     for (int d : {2, 3}) {

@@ -1,4 +1,4 @@
-// Issue 28 item 4(b): a movie's following camera at a small size keeps the front off the colour
+// A movie's following camera at a small size keeps the front off the colour
 // bar and leaves a free border around it, as a still does. Frames of a real 2D kick are aimed
 // as the movie's frame loop aims them (make_plan, make_follow, scan, aim) and every drawn disc's
 // pixels are checked against the colour bar's panel and the border.

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "jobs/run_job.h"
 #include "jobs/run_loop.h"
@@ -43,6 +44,37 @@ TEST(RunLoopResume, ABoxCheckpointFromBeforeTheMediumDefaultResumes) {
   { RunLoop first(o.plan, dir, before); }
   o.plan.physics.seed = 2;
   EXPECT_THROW(run_job(o, true), UserError);
+  fs::remove_all(dir);
+}
+
+// A job writes nothing to the terminal: its notes go to the sink it is given (the command line's
+// prints them, Python's warns), and a job given none says nothing.
+TEST(RunJob, NotesGoToTheSinkNotToStderr) {
+  RunOptions o;
+  o.plan.physics.dim = 1;
+  o.plan.physics.particles = 200;
+  o.plan.physics.t_max = 50;
+  const fs::path dir =
+      fs::temp_directory_path() / ("gs_run_job_notes_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  o.out = dir.string();
+  std::vector<std::string> notes;
+  o.messages = [&](MessageKind kind, const std::string& text) {
+    EXPECT_EQ(kind, MessageKind::Note);
+    notes.push_back(text);
+  };
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_job(o, false).stopped);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0].rfind("finished kick: ", 0), 0u) << notes[0];
+  EXPECT_NE(notes[0].find("results in " + dir.string()), std::string::npos) << notes[0];
+  // Without a sink, nothing is said.
+  o.messages = {};
+  o.force = true;
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(run_job(o, false).stopped);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
   fs::remove_all(dir);
 }
 

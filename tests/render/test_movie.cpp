@@ -95,8 +95,9 @@ void write_scene(const fs::path& path, const MovieOptions& o, int frames) {
 
 // yuv420p keeps one chroma sample per 2x2 pixels (and 8-bit limited-range luma), so saturated disc
 // edges lose colour: the conversion round trip alone gives about 35 dB on this scene and CRF 18
-// costs little more. 30 dB (RMS error 8 of 255) is the bound; the neighbouring frame gives
-// about 20 dB (the negative controls below), and the colour matrix is checked exactly elsewhere.
+// costs little more. 30 dB (RMS error 8 of 255) is the bound we hold it to; the neighbouring frame
+// gives about 20 dB (the negative controls below), and the colour matrix is checked exactly
+// elsewhere.
 constexpr double kMinPsnr = 30.0;
 
 TEST(MovieWriter, H264ByDefaultWithRequestedTimingAndBt709Tags) {

@@ -168,9 +168,9 @@ TEST(RenderGolden, ScaledSpeedWithColourBarAndInset3DSlab) {
   EXPECT_TRUE(msg.empty()) << msg;
 }
 
-// Issue 18's measure on a small kick drawn with the defaults: the inner edge of the band must
-// show. The threshold +0.12 is the issue's target; the old default (log speed, one range over
-// the run) gave +0.02 to +0.07 on the paper-size job.
+// The edge contrast (render/contrast.h) of a small kick drawn with the defaults: the inner edge of
+// the band must show. The threshold +0.12 is what the defaults were chosen to reach; the old
+// default (log speed, one range over the run) gave +0.02 to +0.07 on the paper-size job.
 TEST(RenderContrast, SmallKickShowsTheFastInnerEdge) {
   PhysicsConfig c;
   c.dim = 2;

@@ -8,6 +8,29 @@
 namespace gs {
 namespace {
 
+TEST(Config, ElasticIsRestitutionOne) {
+  PhysicsConfig c;
+  c.restitution = 1.0;
+  EXPECT_TRUE(c.elastic());
+  for (const double r : {0.0, 0.1, 0.95, std::nextafter(1.0, 0.0)}) {
+    c.restitution = r;
+    EXPECT_FALSE(c.elastic()) << r;
+  }
+}
+
+// GS_DCHECK is GS_CHECK in Debug builds and nothing (not even evaluated) in Release ones.
+TEST(Config, DebugOnlyChecksCostNothingInRelease) {
+  int evaluated = 0;
+  GS_DCHECK(++evaluated > 0);
+#ifdef NDEBUG
+  EXPECT_EQ(evaluated, 0);
+  GS_DCHECK(false);  // would abort in a Debug build
+#else
+  EXPECT_EQ(evaluated, 1);
+  EXPECT_DEATH(GS_DCHECK(evaluated == 0), "evaluated == 0");
+#endif
+}
+
 TEST(Config, BoxSideFollowsDensity) {
   PhysicsConfig c;
   c.dim = 2;

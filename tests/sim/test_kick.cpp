@@ -37,7 +37,7 @@ TEST(Kick, ActiveCountGrowsAsTwoThirdsPowerIn2D) {
     sx += x, sy += y, sxx += x * x, sxy += x * y;
   }
   const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-  // The tolerance: 0.07 covers the realisation-to-realisation scatter of four runs (local
+  // The tolerance: 0.07 covers the realisation-to-realisation scatter of four runs (local
   // slopes of single runs wander by ~0.05) and the slow approach to the asymptote; the elastic
   // exponent 2 d / (d + 2) = 1 and the mean-field 2 d / (d + 2)... lie far outside it.
   EXPECT_NEAR(slope, 2.0 / 3.0, 0.07);

@@ -57,7 +57,7 @@ void check_equation_of_state(int dim) {
   // the statistical error of ~3e5 collisions (~0.3% on Z - 1) and finite-size effects at N = 4000.
   EXPECT_NEAR(z / hard_sphere_compressibility(dim, eta), 1.0, 0.015) << "Z = " << z;
   // Enskog's rate neglects velocity correlations, which at packing 0.13-0.2 change the collision
-  // rate by well under 1% (Alder, Gass & Wainwright 1970); 2% is the bound.
+  // rate by well under 1% (Alder, Gass & Wainwright 1970); 2% is the bound.
   EXPECT_NEAR(col("collision_rate") / enskog_rate(dim, c.density, temperature), 1.0, 0.02)
       << "rate = " << col("collision_rate");
 }
@@ -163,7 +163,7 @@ void check_haff_early(int realisations) {
     energy_ratio += temp_prev / (g.t0_temp / std::pow(1 + t_prev / g.tau, 2));
   }
   energy_ratio /= realisations;
-  // 1.5%: the bound where Haff's law holds; measured 1.001 (2D) and 1.005 (3D) with
+  // 1.5%: the bound where Haff's law holds; measured 1.001 (2D) and 1.005 (3D) with
   // these seeds, the excess being where correlations begin (see above); the statistical error
   // of the mean energy of 8 x 4000 particles is ~0.3%.
   EXPECT_NEAR(energy_ratio, 1.0, 0.015) << "E / E_Haff at tau / 4, d = " << dim;
