@@ -10,6 +10,7 @@
 #include "apps/exit_code.h"
 #include "apps/suggest.h"
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace {
 
@@ -78,6 +79,11 @@ int main(int argc, char** argv) {
     return e.code;
   } catch (const CodedError& e) {
     return fail(e.code(), e.what());
+  } catch (const gs::Stopped&) {
+    // Stopped where there was nothing to keep yet (a run's set-up, a file being read).
+    std::fflush(stdout);
+    std::fprintf(stderr, "grainshock: interrupted; what was written before is whole\n");
+    return kExitInterrupted;
   } catch (const gs::UsageError& e) {
     return fail(kExitUsageError, e.what());
   } catch (const gs::UserError& e) {
