@@ -173,8 +173,11 @@ TEST(CliStop, EveryKindOfWorkStopsAtARandomMoment) {
   };
   int k = 0;
   for (const Work& w : works)
-    for (int sig : {SIGINT, SIGTERM})
-      interrupt_at_random(w, sig, dir / ("w" + std::to_string(k++)), random);
+    for (int sig : {SIGINT, SIGTERM}) {
+      std::string name = "w";
+      name += std::to_string(k++);
+      interrupt_at_random(w, sig, dir / name, random);
+    }
 }
 
 // A second signal while the first is honoured ends the process at once, saying so, with 130;
@@ -200,13 +203,14 @@ TEST(CliStop, SecondSignalExitsAtOnceWithAMessage) {
     EXPECT_EQ(wait_for_exit(pid, std::chrono::milliseconds(2500)), 130)
         << "(1000 + s: killed by signal s) " << read_file(err);
     const std::string text = read_file(err);
-    // Either the second signal came while the first was honoured, or the wind-down was over
-    // before it (then the first's message); signals sent back to back nearly always find the
-    // former, and at least one of the three must.
+    // Either the second signal came while the first was honoured, or not (two SIGINTs sent
+    // back to back may arrive as one; a stop in the set-up may be over at once): then the
+    // first's message. Two different signals back to back nearly always find the former, and
+    // at least one of the three tries must.
     if (text.find("grainshock: interrupted again: exiting at once") != std::string::npos)
       ++at_once;
     else
-      EXPECT_NE(text.find("continue with: grainshock resume"), std::string::npos) << text;
+      EXPECT_NE(text.find("grainshock: interrupted"), std::string::npos) << text;
     expect_whole_files(out);
   }
   EXPECT_GE(at_once, 1);
