@@ -64,6 +64,12 @@ int main(int argc, char** argv) {
                   "(grainshock --help).");
   }
   const std::vector<std::string> args(argv + (argc > 0), argv + argc);
+  // The commands whose long loops poll the stop take SIGINT and SIGTERM from the start, so that
+  // a signal before their work begins also ends them with 130; the others (compare, bench,
+  // completion) keep the default, which ends them at once.
+  const std::set<std::string> stoppable = {"run",      "resume",  "movie", "ensemble",
+                                           "figures", "merge", "render"};
+  if (!args.empty() && stoppable.count(args[0])) gs::install_stop_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
