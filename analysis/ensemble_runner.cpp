@@ -118,6 +118,9 @@ class LocalWork {
           break;
         }
         f.files = realisation_files(r);
+      } catch (const Stopped&) {  // stopped in a realisation's set-up
+        interrupted_ = true;
+        break;
       } catch (const UserError& e) {
         f.error = e.what();
         f.user_error = true;

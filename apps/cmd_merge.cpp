@@ -15,6 +15,7 @@
 #include "apps/ensemble_cli.h"
 #include "io/output_dir.h"
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace gs::app {
 namespace {
@@ -42,11 +43,14 @@ bool within(const fs::path& inner, const fs::path& outer) {
 void run(const MergeOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.inputs.empty()) throw UserError("merge: give at least one ensemble folder");
+  // A stop while the inputs are read leaves the output folder untouched (exit 130).
+  install_stop_handlers();
   // Read and check everything before the output folder is touched.
   std::optional<EnsembleSpec> first;
   std::string first_dir;
   std::vector<std::pair<std::uint64_t, fs::path>> parts;
   for (const auto& in : o.inputs) {
+    throw_if_stopped();
     const fs::path dir(in);
     if (within(o.out, dir))
       throw UserError("--out " + o.out + ": is the input " + in +
@@ -83,7 +87,10 @@ void run(const MergeOptions& o) {
                       " is also in " + parts[k - 1].second.string());
   const FitOptions fit = jobs::fit_options(o.resamples, o.window, *first);
   EnsembleSums sums(*first);
-  for (const auto& [index, p] : parts) sums.add(read_realisation(p, index), p.string());
+  for (const auto& [index, p] : parts) {
+    throw_if_stopped();
+    sums.add(read_realisation(p, index), p.string());
+  }
   const auto dir = prepare_output_dir(o.out, o.force);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const EnsembleFits fits = jobs::write_ensemble_folder(dir, sums, fit, wall, 1, 0);

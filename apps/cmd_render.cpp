@@ -13,6 +13,7 @@
 #include "render/render_choices.h"
 #include "render/renderer.h"
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace gs::app {
 
@@ -116,9 +117,14 @@ void add_render_command(CLI::App& app) {
     auto& o = *opt;
     // Everything the user typed is checked before any file is read or GL context made.
     const auto backend = render::settle_choices(o);
+    // Reading a large file takes seconds: a stop between (or inside, io/) exits 130, no PNG.
+    install_stop_handlers();
     std::vector<Snapshot> snaps;
     snaps.reserve(o.inputs.size());
-    for (const auto& path : o.inputs) snaps.push_back(read_snapshot(path, o.read, o.frame));
+    for (const auto& path : o.inputs) {
+      snaps.push_back(read_snapshot(path, o.read, o.frame));
+      throw_if_stopped();
+    }
     std::vector<const Snapshot*> ptrs;
     for (const auto& s : snaps) ptrs.push_back(&s);
     render::settle_for_snapshots(o, ptrs, o.inputs.front());
@@ -131,6 +137,7 @@ void add_render_command(CLI::App& app) {
 
     render::Renderer renderer(backend);
     const render::Image img = renderer.render(ptrs, o.style, o.view);
+    throw_if_stopped();
     render::write_png(o.out, img, render::png_text(ptrs), o.compression);
   });
 }

@@ -10,6 +10,7 @@
 #include "apps/exit_code.h"
 #include "apps/suggest.h"
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace {
 
@@ -63,6 +64,12 @@ int main(int argc, char** argv) {
                   "(grainshock --help).");
   }
   const std::vector<std::string> args(argv + (argc > 0), argv + argc);
+  // The commands whose long loops poll the stop take SIGINT and SIGTERM from the start, so that
+  // a signal before their work begins also ends them with 130; the others (compare, bench,
+  // completion) keep the default, which ends them at once.
+  const std::set<std::string> stoppable = {"run",      "resume",  "movie", "ensemble",
+                                           "figures", "merge", "render"};
+  if (!args.empty() && stoppable.count(args[0])) gs::install_stop_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -78,6 +85,11 @@ int main(int argc, char** argv) {
     return e.code;
   } catch (const CodedError& e) {
     return fail(e.code(), e.what());
+  } catch (const gs::Stopped&) {
+    // Stopped where there was nothing to keep yet (a run's set-up, a file being read).
+    std::fflush(stdout);
+    std::fprintf(stderr, "grainshock: interrupted; what was written before is whole\n");
+    return kExitInterrupted;
   } catch (const gs::UsageError& e) {
     return fail(kExitUsageError, e.what());
   } catch (const gs::UserError& e) {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace gs {
 
@@ -30,6 +31,7 @@ std::string gunzip(std::string_view bytes, const std::string& name, std::size_t 
   constexpr std::size_t kChunk = std::size_t{1} << 18;
   std::size_t in = 0;
   while (true) {
+    throw_if_stopped();  // gigabytes take seconds
     if (out.size() > max_bytes) {
       char limit[32];
       std::snprintf(limit, sizeof limit, "%.3g GB", static_cast<double>(max_bytes) / 1e9);

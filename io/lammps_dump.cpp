@@ -7,6 +7,7 @@
 
 #include "io/text_scan.h"
 #include "sim/error.h"
+#include "sim/stop.h"
 
 namespace gs {
 namespace {
@@ -66,6 +67,7 @@ DumpSource::DumpSource(MappedFile f) : file_(std::move(f)) {
   std::string_view line;
   while (c.next(line)) {
     if (is_blank(line)) continue;
+    throw_if_stopped();  // a file of many frames takes a while to index
     DumpFrame fr;
     fr.first_line = c.line();
     const std::string frame_name = "frame " + std::to_string(frames_.size());

@@ -13,6 +13,7 @@
 #include "io/text_scan.h"
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/stop.h"
 
 namespace gs {
 namespace {
@@ -84,6 +85,7 @@ XyzSource::XyzSource(MappedFile f) : file_(std::move(f)) {
   std::string_view line;
   while (c.next(line)) {
     if (is_blank(line)) continue;  // between frames and at the end
+    throw_if_stopped();  // a file of many frames takes a while to index
     FrameSpan s;
     s.count_line = c.line();
     std::size_t t = 0;

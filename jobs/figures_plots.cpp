@@ -13,6 +13,7 @@
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/stop.h"
 
 namespace gs::jobs {
 namespace {
@@ -474,10 +475,12 @@ Fig1Snapshots run_fig1(const FiguresPlan::Fig1& f) {
   auto sim = make_simulation(f.a);
   for (double t : f.a_times) {
     sim->run_until(t);
+    throw_if_stopped();  // run_until returns early on a stop: the snapshot would be early
     out.a.push_back(sim->snapshot());
   }
   sim = make_simulation(f.b);
   sim->run_until(f.b.t_max);
+  throw_if_stopped();
   out.b = sim->snapshot();
   return out;
 }

@@ -402,15 +402,25 @@ bool sample(RunLoop& loop, const fs::path& dir, const RunOptions& o, bool from_s
 bool after_sampling(const RunLoop& loop, const fs::path& dir, const RunOptions& o,
                     const FrontMovieOptions& movie, std::future<std::optional<Snapshot>>& elastic,
                     bool stopped) {
-  if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
-  if (!stopped && o.png) stopped = !write_pictures(dir, o);
-  if (!stopped && o.movie && loop.stage() != kMovieMade) {
-    // Runs are reproducible from (config, seed): the movie replays this very trajectory.
-    if (!o.quiet) tell(o.messages, MessageKind::Note, "movie of the front");
-    stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
+  // A stop while a file is read (io/) or a simulation set up throws Stopped: the run is then
+  // stopped as anywhere else, its summary written.
+  try {
+    if (!stopped && !o.trajectory.empty()) write_trajectory(dir, o);
+    if (!stopped && o.png) stopped = !write_pictures(dir, o);
+    if (!stopped && o.movie && loop.stage() != kMovieMade) {
+      // Runs are reproducible from (config, seed): the movie replays this very trajectory.
+      if (!o.quiet) tell(o.messages, MessageKind::Note, "movie of the front");
+      stopped = write_front_movie(o.plan.physics, movie, dir).stopped;
+    }
+  } catch (const Stopped&) {
+    stopped = true;
   }
   if (elastic.valid()) {
-    const std::optional<Snapshot> s = elastic.get();
+    std::optional<Snapshot> s;
+    try {
+      s = elastic.get();
+    } catch (const Stopped&) {  // in the comparison's set-up
+    }
     if (!s)
       stopped = true;
     else if (!stopped)

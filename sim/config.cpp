@@ -27,12 +27,25 @@ double PhysicsConfig::paper_time(double t) const {
   return t * speed * std::pow(n, 1.0 / dim);
 }
 
+// 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1288^3, whose whole tiles of 4^3
+// (sim/cell_grid.h) number under 2^31 (1D: validate refuses).
+static double most_unbounded_cells_per_side(int dim) { return dim == 3 ? 1288 : 32766; }
+
 int unbounded_cells_per_side(const PhysicsConfig& c) {
-  // 2D: up to 32766^2 cells (even, under 2^15); 3D: up to 1288^3, whose whole tiles of 4^3
-  // (sim/cell_grid.h) number under 2^31 (1D: validate refuses).
-  const double most = c.dim == 3 ? 1288 : 32766;
+  const double most = most_unbounded_cells_per_side(c.dim);
   const double side = std::pow(static_cast<double>(c.particles) / c.density, 1.0 / c.dim);
   return 2 * static_cast<int>(std::clamp(std::ceil(2 * side / kUnboundedCellSide), 8.0, most / 2));
+}
+
+double min_unbounded_density(int dim) {
+  // The region make_cell (sim/engine.cpp) may fill: all but the outermost cell on each side.
+  const double radius = (most_unbounded_cells_per_side(dim) / 2 - 1) * kUnboundedCellSide;
+  const double swept = dim == 3 ? std::numbers::pi : 2.0;  // area (volume) swept per unit length
+  constexpr double kFreePaths = 10;
+  const double least = kFreePaths / (swept * radius);
+  // Rounded up to two digits, so that the message names a value the check accepts.
+  const double unit = std::pow(10.0, std::floor(std::log10(least)) - 1);
+  return std::ceil(least / unit) * unit;
 }
 
 double max_rsa_density(int dim) {
@@ -133,6 +146,12 @@ void validate(const PhysicsConfig& c) {
     // The box's limits below do not apply; the medium's calibration has its own (it names
     // --density).
     medium_candidate_density(c.dim, c.density);
+    if (c.density < min_unbounded_density(c.dim))
+      fail("--density " + num(c.density) + ": under " + rounded(min_unbounded_density(c.dim)) +
+           ", the least the unbounded medium takes in " + std::to_string(c.dim) +
+           "D (the kicked particle's mean free path must be under a tenth of the medium's "
+           "reach); use --density " + rounded(min_unbounded_density(c.dim)) +
+           " or more");
     return;
   }
   // Below three diameters a particle could meet its own periodic image within the cell stencil.

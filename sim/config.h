@@ -79,6 +79,12 @@ void check_memory(const PhysicsConfig& c, int snapshot_copies = 1);
 // collision than in a box with 32766 cells per side, 9% with 8000.
 inline constexpr double kUnboundedCellSide = 1.0 + 0x1p-20;
 int unbounded_cells_per_side(const PhysicsConfig& c);
+// The lowest --density of the unbounded medium in `dim` (2, 3): the kicked particle's mean free
+// path, 1/(2n) for a disc and 1/(pi n) for a sphere, is a tenth of the radius the widest grid
+// addresses (16382 cells in 2D, 643 in 3D), so that it leaves the grid before its first
+// collision once in e^10 runs. Below it a run would make the empty cells of the whole grid
+// (a billion, gigabytes of memory) looking for a particle to kick or for its first collision.
+double min_unbounded_density(int dim);
 
 // Highest number density random sequential addition reaches in reasonable time (below the RSA
 // jamming limits: packing 0.547 in 2D, Feder 1980; 0.384 in 3D, Talbot et al. 1991).

@@ -12,6 +12,7 @@
 #include "sim/huge_pages.h"
 #include "sim/observables.h"
 #include "sim/rng.h"
+#include "sim/stop.h"
 
 namespace gs {
 
@@ -85,6 +86,7 @@ void Engine<D>::kick_nearest_centre() {
   // Cells middle - ring .. middle + ring hold every point within ring cell sides of the centre
   // (the corner of cell `middle`).
   for (int ring = 1;; ++ring) {
+    throw_if_stopped();  // validate() bounds the rings to tens, but a stop is honoured anyway
     const IVec<D> lo = IVec<D>::Constant(middle - ring);
     for (IVec<D> c = lo;;) {
       const std::int32_t cell = grid_.index(c);
@@ -188,7 +190,8 @@ void Engine<D>::make_cell(std::int32_t cell) {
                     ": the unbounded medium has made as many particles as it may by t = " +
                     format_double(now_) + "; raise --particles or lower --t-max");
   take_memory(fresh_.size());
-  if (medium_->cached_candidates() > kMemoCandidates) medium_->clear();
+  if (medium_->cached_candidates() > kMemoCandidates || medium_->memory_bytes() > kMemoBytes)
+    medium_->clear();
   head_[cell] = kEmptyCell;
   made_.push_back(cell);
   const Vec<D> shift = Vec<D>::Constant(middle * grid_.side());
@@ -678,6 +681,11 @@ void Engine<D>::run_until(double t) {
   while (!queue_.empty() && queue_.top_time() <= t) {
     now_ = std::max(now_, queue_.top_time());
     process_next();
+    // A stop is seen within kStopPollEvents events (a few ms), even where events pile up at one
+    // instant and the clock does not move: one test of a counter an event, a relaxed load of the
+    // flag per batch. The clock stays at the last event; the caller sees stop_requested().
+    if ((stats_.events & (kStopPollEvents - 1)) == 0 && stop_requested()) [[unlikely]]
+      return;
   }
   now_ = std::max(now_, t);
 }

@@ -75,8 +75,10 @@ class Simulation {
   virtual ~Simulation() = default;
   virtual int dim() const = 0;
   virtual const PhysicsConfig& config() const = 0;
-  // Processes every event up to time t and leaves the clock at t.
+  // Processes every event up to time t and leaves the clock at t; or, once a stop is asked for
+  // (sim/stop.h), returns within kStopPollEvents events with the clock at the last one.
   virtual void run_until(double t) = 0;
+  static constexpr std::int64_t kStopPollEvents = std::int64_t{1} << 16;
   // Processes the next event only (for tests and debugging).
   virtual EventKind step() = 0;
   virtual double time() const = 0;
@@ -291,8 +293,10 @@ class Engine final : public Simulation {
   // The unbounded medium (none in a box): its generator, the cells made so far in the order they
   // were made (what a checkpoint keeps of the grid), a cell's new particles, and the most
   // particles the run may make. The generator's memo is dropped past kMemoCandidates (about
-  // 40 MB); what it makes does not depend on it.
+  // 40 MB), or past kMemoBytes in all, which a dilute medium's empty cells (4 B each) reach
+  // first; what it makes does not depend on it.
   static constexpr std::size_t kMemoCandidates = std::size_t{1} << 20;
+  static constexpr std::size_t kMemoBytes = std::size_t{1} << 27;
   std::unique_ptr<UnboundedMedium<D>> medium_;
   std::vector<std::int32_t> made_;
   VecArray<D> fresh_;

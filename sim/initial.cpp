@@ -10,6 +10,7 @@
 #include "sim/huge_pages.h"
 #include "sim/melt.h"
 #include "sim/resting_store.h"
+#include "sim/stop.h"
 
 namespace gs {
 
@@ -72,6 +73,7 @@ VecArray<D> random_sequential_addition(std::int64_t n, double box, Rng& rng) {
       throw UserError("--density: random sequential addition could not place particle " +
                       std::to_string(x.size() + 1) + " of " + std::to_string(n) +
                       "; the box is too full");
+    if ((trial & 0xFFFF) == 0) throw_if_stopped();  // 2e6 spheres take seconds
     const Trial& soon = ring[(trial + kAhead / 2) % kAhead];
     for (int k = 0; k < soon.cells; ++k)
       if (const std::int32_t h = head[soon.cell[k]]; h >= 0) {

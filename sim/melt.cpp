@@ -8,6 +8,7 @@
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/format.h"
+#include "sim/stop.h"
 
 namespace gs {
 
@@ -50,7 +51,10 @@ InitialState<D> melted_lattice(const PhysicsConfig& c, MeltReport* report) {
   Snapshot snap;
   VecArray<D> x(static_cast<std::size_t>(n));
   for (std::int64_t due = kMeltCheckCollisions * n;; due += kMeltCheckCollisions * n) {
-    while (melt.stats().collisions < due) melt.run_until(t += dt);
+    while (melt.stats().collisions < due) {
+      melt.run_until(t += dt);
+      throw_if_stopped();  // run_until returns at once once a stop is asked for
+    }
     melt.snapshot(snap);
     for (std::size_t i = 0; i < x.size(); ++i) x[i] = snap.position[i].template head<D>();
     order = lattice_order<D>(x, box, side);

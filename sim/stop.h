@@ -2,8 +2,12 @@
 // A cooperative stop: SIGINT/SIGTERM only set a flag, and long loops (the engine's run loop, the
 // movie frame loop) poll it and wind down properly, e.g. finish a movie with a valid trailer.
 // Header-only so that every library can poll it without linking anything.
+#include <unistd.h>
+
 #include <atomic>
 #include <csignal>
+#include <cstdlib>
+#include <exception>
 
 namespace gs {
 
@@ -12,18 +16,28 @@ namespace detail {
 inline std::atomic<int> stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free);
 
+// A second signal while the first is being honoured ends the process at once, for the impatient
+// user: with a line that says so (write and _exit are async-signal-safe), and 130 as for any
+// stop. What is on disk is what a kill leaves: every result file is whole or absent
+// (io/atomic_file.h), the last checkpoint stays, and the next command clears the leftovers.
 extern "C" inline void on_stop_signal(int sig) {
-  stop_signal.store(sig, std::memory_order_relaxed);
+  if (stop_signal.exchange(sig, std::memory_order_relaxed) != 0) {
+    static constexpr char kLine[] =
+        "\ngrainshock: interrupted again: exiting at once; the files written so far are whole, "
+        "the last checkpoint stays\n";
+    [[maybe_unused]] const auto n = ::write(STDERR_FILENO, kLine, sizeof kLine - 1);
+    ::_exit(130);
+  }
 }
 }  // namespace detail
 
-// Installs the handlers for SIGINT and SIGTERM. One-shot (SA_RESETHAND): a second Ctrl-C kills the
-// process at once, for the impatient user whose loop does not poll.
+// Installs the handlers for SIGINT and SIGTERM. The first asks for a stop; a second (either)
+// exits at once with a message (detail::on_stop_signal).
 inline void install_stop_handlers() {
   struct sigaction sa {};
   sa.sa_handler = detail::on_stop_signal;
   sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND | SA_RESTART;
+  sa.sa_flags = SA_RESTART;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 }
@@ -43,6 +57,18 @@ inline void request_stop(int sig = -1) {
 }
 inline void clear_stop() {
   detail::stop_signal.store(0, std::memory_order_relaxed);
+}
+
+// What a loop with nothing of its own to save (the set-up of a run: random sequential addition,
+// a thermal start's melting, the unbounded medium around the kick; reading a file) throws when a
+// stop is asked for: the stack unwinds, result files being written are removed, and the command
+// line exits 130.
+class Stopped : public std::exception {
+ public:
+  const char* what() const noexcept override { return "interrupted"; }
+};
+inline void throw_if_stopped() {
+  if (stop_requested()) throw Stopped();
 }
 
 }  // namespace gs
