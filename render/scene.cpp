@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "render/field.h"
 #include "render/frame_threads.h"
@@ -138,10 +139,12 @@ void colour_scale(Scene& sc, const std::vector<const Snapshot*>& snaps, std::vec
 // legend above instead when that leaves more room (square or tall pictures, a legend too wide to
 // sit beside it), the inset on the left. An explicitly centred view keeps none (but a shot).
 struct Reserve {
-  int right = 0, top = 0, left = 0;
+  int right = 0, top = 0, left = 0, bottom = 0;
   bool shot = false;  // a 2D following camera's shot (View::half_width)
   int narrow_by() const { return right + left; }
   int shift_px() const { return right - left; }
+  int lower_by() const { return top + bottom; }
+  int raise_px() const { return top - bottom; }
 };
 
 Reserve overlay_reserve(const Scene& sc, const View& view, OverlayPainter& painter) {
@@ -216,10 +219,44 @@ Eigen::AlignedBox3d framed_region(const std::vector<const Snapshot*>& snaps, con
   return fit;
 }
 
-// 3D: a bounding sphere about the region's centre (tighter than the box's corners for a shell),
-// fitted into the width the overlays leave and shifted to the middle of it.
-Camera frame_3d(const std::vector<const Snapshot*>& snaps, const Eigen::AlignedBox3d& fit,
-                bool wrap, double r_max, const View& view, const Reserve& reserve) {
+// A sphere fitted into the part of the picture the overlays leave, its centre in the middle of it.
+Camera frame_sphere_3d(const Eigen::Vector3d& c, double radius, const View& view,
+                       const Reserve& reserve) {
+  if (reserve.narrow_by() <= 0 && reserve.lower_by() <= 0) return make_camera_3d(c, radius, view);
+  View narrow = view;
+  narrow.width -= reserve.narrow_by();
+  if (reserve.lower_by() > 0) {  // the field of view is vertical: narrowed with the height
+    constexpr double deg = std::numbers::pi / 180;
+    narrow.height -= reserve.lower_by();
+    narrow.fov = 2 / deg *
+                 std::atan(std::tan(view.fov * deg / 2) * narrow.height / double(view.height));
+  }
+  const Camera fitted = make_camera_3d(c, radius, narrow);
+  View shifted = view;
+  shifted.distance = fitted.distance;
+  const double ppu = narrow.height / (2 * fitted.distance * fitted.tan_half_y);
+  Eigen::Vector3d centre =
+      c + fitted.view.block<1, 3>(0, 0).transpose() * (reserve.shift_px() / 2.0 / ppu);
+  if (reserve.raise_px() != 0)  // the camera's up is row 1 of its view
+    centre += fitted.view.block<1, 3>(1, 0).transpose() * (reserve.raise_px() / 2.0 / ppu);
+  shifted.centre = centre;
+  return make_camera_3d(c, radius, shifted);
+}
+
+// What a camera must show: 2D the framed region, 3D a bounding sphere about the region's centre
+// (tighter than the box's corners for a shell).
+struct Subject {
+  int dim = 2;
+  Eigen::AlignedBox3d fit;
+  double r_max = 0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0;
+};
+
+Subject subject(const std::vector<const Snapshot*>& snaps, const Eigen::AlignedBox3d& fit,
+                bool wrap, int dim, double r_max) {
+  Subject sub{dim, fit, r_max};
+  if (dim != 3) return sub;
   const Eigen::Vector3d c = fit.isEmpty() ? Eigen::Vector3d::Zero() : fit.center().eval();
   double r2 = 0;
   const bool all =
@@ -230,17 +267,9 @@ Camera frame_3d(const std::vector<const Snapshot*>& snaps, const Eigen::AlignedB
     for (const Snapshot* s : snaps)
       for (std::size_t i = 0; i < s->size(); ++i)
         if (all || s->active[i]) r2 = std::max(r2, (s->position[i] - c).squaredNorm());
-  const double radius = std::sqrt(r2) + r_max;
-  if (reserve.narrow_by() <= 0) return make_camera_3d(c, radius, view);
-  View narrow = view;
-  narrow.width -= reserve.narrow_by();
-  const Camera fitted = make_camera_3d(c, radius, narrow);
-  View shifted = view;
-  shifted.distance = fitted.distance;
-  const double ppu = view.height / (2 * fitted.distance * fitted.tan_half_y);
-  shifted.centre =
-      c + fitted.view.block<1, 3>(0, 0).transpose() * (reserve.shift_px() / 2.0 / ppu);
-  return make_camera_3d(c, radius, shifted);
+  sub.centre = c;
+  sub.radius = std::sqrt(r2) + r_max;
+  return sub;
 }
 
 // 2D: fitted into the part of the picture the overlays leave free, then widened to the whole.
@@ -248,7 +277,7 @@ Camera frame_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& view,
                 const Reserve& reserve) {
   View open_area = view;
   open_area.width -= reserve.narrow_by();
-  open_area.height -= reserve.top;
+  open_area.height -= reserve.lower_by();
   Camera cam = make_camera_2d(fit, r_max, open_area);
   if (reserve.shot) {
     const double half_h = view.half_width * view.height / view.width;
@@ -263,11 +292,137 @@ Camera frame_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& view,
     cam.half_w = view.width / (2 * ppu);
     cam.origin.x() += reserve.shift_px() / (2 * ppu);
   }
-  if (reserve.top > 0) {
+  if (reserve.lower_by() > 0) {
     cam.height = view.height;
     cam.half_h = view.height / (2 * ppu);
-    cam.origin.y() += reserve.top / (2 * ppu);  // world y points up the picture
+    cam.origin.y() += reserve.raise_px() / (2 * ppu);  // world y points up the picture
   }
+  return cam;
+}
+
+Camera frame(const Subject& sub, const View& view, const Reserve& reserve) {
+  return sub.dim == 3 ? frame_sphere_3d(sub.centre, sub.radius, view, reserve)
+                      : frame_2d(sub.fit, sub.r_max, view, reserve);
+}
+
+// Pixels per world unit (3D: at the orbit centre's distance): the larger, the better framed.
+double magnification(const Camera& cam) {
+  return cam.perspective ? cam.height / (2 * cam.distance * cam.tan_half_y)
+                         : cam.pixels_per_unit();
+}
+
+// Where the subject lies in the picture (pixels, y down), clipped to it. 2D: the region with the
+// particles' radius (a shot: its box); 3D: the box of the bounding sphere's outline, widened by
+// a twentieth for the stretch of a sphere seen off the axis.
+Rect content_rect(const Subject& sub, const Camera& cam, const View& view, bool shot) {
+  double x0, x1, y0, y1;
+  if (sub.dim == 3) {
+    const Eigen::Vector4d e = cam.view * (sub.centre - cam.origin).homogeneous();
+    const double d = e.head<3>().norm(), depth = -e.z();
+    if (!(depth > sub.radius && d > sub.radius)) return {0, 0, cam.width, cam.height};
+    const double fx = cam.width / (2 * cam.tan_half_x), fy = cam.height / (2 * cam.tan_half_y);
+    const double cx = cam.width / 2.0 + fx * e.x() / depth, cy = cam.height / 2.0 - fy * e.y() / depth;
+    const double r = 1.05 * std::max(fx, fy) * sub.radius / std::sqrt(d * d - sub.radius * sub.radius) + 1;
+    x0 = cx - r, x1 = cx + r, y0 = cy - r, y1 = cy + r;
+  } else {
+    Eigen::AlignedBox3d box = sub.fit;
+    if (shot) {
+      const Eigen::Vector3d half(view.half_width, view.half_width * view.height / view.width, 0);
+      box = Eigen::AlignedBox3d(*view.centre - half, *view.centre + half);
+    } else {
+      box.min().array() -= sub.r_max;
+      box.max().array() += sub.r_max;
+    }
+    const double ppu = cam.pixels_per_unit();
+    x0 = cam.width / 2.0 + (box.min().x() - cam.origin.x()) * ppu;
+    x1 = cam.width / 2.0 + (box.max().x() - cam.origin.x()) * ppu;
+    y0 = cam.height / 2.0 - (box.max().y() - cam.origin.y()) * ppu;
+    y1 = cam.height / 2.0 - (box.min().y() - cam.origin.y()) * ppu;
+  }
+  auto clip = [](double v, int hi) { return static_cast<int>(std::clamp(v, 0.0, double(hi))); };
+  return {clip(std::floor(x0), cam.width), clip(std::floor(y0), cam.height),
+          clip(std::ceil(x1), cam.width), clip(std::ceil(y1), cam.height)};
+}
+
+bool overlaps(const Rect& a, const Rect& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+bool overlaps(const Rect& a, const std::vector<Rect>& panels) {
+  return std::any_of(panels.begin(), panels.end(), [&](const Rect& p) { return overlaps(a, p); });
+}
+
+// The panels the overlays will take, as annotate() paints them: the colour bar's strip of the
+// right edge or the legend, the inset and, in a still, the time label (a movie's shot leaves it
+// out: its width changes with the digits, and the shot's framing must not).
+std::vector<Rect> overlay_panels(const Scene& sc, const View& view, bool shot,
+                                 OverlayPainter& painter) {
+  const int w = view.width, h = view.height;
+  std::vector<Rect> out;
+  if (sc.overlay) {
+    if (sc.style.legend)
+      out.push_back({w - painter.legend_width(w, h, sc.legend), 0, w,
+                     painter.legend_height(w, h, sc.legend.size())});
+    return out;
+  }
+  if (sc.style.colorbar)
+    out.push_back({w - painter.colorbar_width(w, h, sc.range, sc.style.scale, sc.bar_label,
+                                              sc.bar_note),
+                   0, w, h});
+  if (sc.style.time_label && !sc.time_text.empty() && !shot)
+    out.push_back(painter.top_left_label_panel(w, h, sc.time_text));
+  if (sc.inset) out.push_back(painter.inset_panel(w, h));
+  return out;
+}
+
+// The camera of the reserve the overlays ask for, if the subject then keeps clear of their
+// panels; else the most magnified of the rectangles between the panels' edges that keeps it
+// clear (at 4:3 the inset and colour bar together take more than half the width: the subject
+// goes above the inset instead).
+// The scale bar's panel (bottom left, above the inset) depends on the camera's magnification.
+struct Panels {
+  std::vector<Rect> fixed;
+  bool scale_bar = false;
+  int below_top = -1;
+  OverlayPainter* painter = nullptr;
+  bool clear(const Rect& content, const Camera& cam) const {
+    if (overlaps(content, fixed)) return false;
+    return !scale_bar || !overlaps(content, painter->scale_bar_panel(cam.width, cam.height,
+                                                                     cam.pixels_per_unit(),
+                                                                     below_top));
+  }
+};
+
+Camera frame_clear_of(const Subject& sub, const View& view, const Reserve& asked,
+                      Panels panels_of) {
+  Camera cam = frame(sub, view, asked);
+  if (panels_of.fixed.empty() && !panels_of.scale_bar) return cam;
+  if (panels_of.clear(content_rect(sub, cam, view, asked.shot), cam)) return cam;
+  std::vector<Rect> panels = panels_of.fixed;
+  if (panels_of.scale_bar)
+    panels.push_back(panels_of.painter->scale_bar_panel(view.width, view.height,
+                                                        cam.pixels_per_unit(), panels_of.below_top));
+  std::vector<int> xs{0, view.width}, ys{0, view.height};
+  for (const Rect& p : panels) {
+    xs.insert(xs.end(), {std::clamp(p.x0, 0, view.width), std::clamp(p.x1, 0, view.width)});
+    ys.insert(ys.end(), {std::clamp(p.y0, 0, view.height), std::clamp(p.y1, 0, view.height)});
+  }
+  std::sort(xs.begin(), xs.end());
+  std::sort(ys.begin(), ys.end());
+  double best = -1;
+  for (std::size_t a = 0; a < xs.size(); ++a)
+    for (std::size_t b = a + 1; b < xs.size(); ++b)
+      for (std::size_t c = 0; c < ys.size(); ++c)
+        for (std::size_t d = c + 1; d < ys.size(); ++d) {
+          const Rect open{xs[a], ys[c], xs[b], ys[d]};
+          if (open.x1 - open.x0 < view.width / 4 || open.y1 - open.y0 < view.height / 4 ||
+              overlaps(open, panels))
+            continue;
+          const Reserve r{view.width - open.x1, open.y0, open.x0, view.height - open.y1, asked.shot};
+          const Camera tried = frame(sub, view, r);
+          const double m = magnification(tried);
+          if (m > best && panels_of.clear(content_rect(sub, tried, view, asked.shot), tried))
+            best = m, cam = tried;
+        }
   return cam;
 }
 
@@ -455,11 +610,19 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   colour_scale(sc, snaps, keep.values);
   const Reserve reserve = overlay_reserve(sc, view, painter);
   const BoxWrap wrap(snaps, view.framing, sc.dim);
-  const Eigen::AlignedBox3d fit = framed_region(snaps, wrap);
   for (const Snapshot* s : snaps)
     for (double r : s->radius) sc.r_max = std::max(sc.r_max, r);
-  sc.camera = sc.dim == 3 ? frame_3d(snaps, fit, wrap.on(), sc.r_max, view, reserve)
-                          : frame_2d(fit, sc.r_max, view, reserve);
+  const Subject sub = subject(snaps, framed_region(snaps, wrap), wrap.on(), sc.dim, sc.r_max);
+  // Overlays never lie over particles: an explicitly centred view (not a shot) has none reserved.
+  const bool placed = !view.centre || reserve.shot;
+  Panels panels;
+  if (placed) {
+    panels.fixed = overlay_panels(sc, view, reserve.shot, painter);
+    panels.scale_bar = style.scale_bar;
+    panels.below_top = sc.inset ? painter.inset_panel(view.width, view.height).y0 : -1;
+    panels.painter = &painter;
+  }
+  sc.camera = frame_clear_of(sub, view, reserve, panels);
   SpritePass(sc, keep, wrap, *snaps.front()).run(snaps);
   if (sc.dim == 3 && style.occlusion_cull) cull_occluded(sc);
   return sc;
