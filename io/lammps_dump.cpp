@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "io/particle_types.h"
 #include "io/text_scan.h"
 #include "sim/error.h"
 
@@ -303,6 +304,8 @@ Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
         }
       },
       true);
+  // LAMMPS types are numbers; they name the particle types (what OVITO colours by).
+  if (const Column* t = s.column("type")) assign_types(s, t->values);
   return s;
 }
 

@@ -133,6 +133,12 @@ void colour_scale(Scene& sc, const std::vector<const Snapshot*>& snaps, std::vec
   sc.time_text = time_text(snaps.front()->info);
   for (std::size_t k = 0; sc.overlay && k < snaps.size(); ++k)
     sc.legend.emplace_back(overlay_colour(k), time_text(snaps[k]->info));
+  // Types are categories: a palette and a legend of their names say more than a colour bar.
+  if (!sc.overlay && style.field == Field::Type) {
+    sc.style.colorbar = false;
+    const auto& names = snaps.front()->type_names;
+    for (std::size_t k = 0; k < names.size(); ++k) sc.legend.emplace_back(overlay_colour(k), names[k]);
+  }
 }
 
 // Pixels a framed scene leaves to its overlays: the colour bar or legend on the right, a 2D
@@ -157,9 +163,9 @@ Reserve overlay_reserve(const Scene& sc, const View& view, OverlayPainter& paint
   if (sc.style.colorbar && !sc.overlay)
     r.right = painter.colorbar_width(view.width, view.height, sc.range, style.scale, sc.bar_label,
                                      sc.bar_note);
-  else if (style.legend && sc.overlay)
+  else if (style.legend && !sc.legend.empty())
     r.right = painter.legend_width(view.width, view.height, sc.legend);
-  if (style.legend && sc.overlay && !three_d) {
+  if (style.legend && !sc.legend.empty() && !three_d) {
     const int top = painter.legend_height(view.width, view.height, sc.legend.size());
     if (top < view.height / 2 &&
         std::min(view.width, view.height - top) > std::min(view.width - r.right, view.height)) {
@@ -358,12 +364,10 @@ std::vector<Rect> overlay_panels(const Scene& sc, const View& view, bool shot,
                                  OverlayPainter& painter) {
   const int w = view.width, h = view.height;
   std::vector<Rect> out;
-  if (sc.overlay) {
-    if (sc.style.legend)
-      out.push_back({w - painter.legend_width(w, h, sc.legend), 0, w,
-                     painter.legend_height(w, h, sc.legend.size())});
-    return out;
-  }
+  if (sc.style.legend && !sc.legend.empty())
+    out.push_back({w - painter.legend_width(w, h, sc.legend), 0, w,
+                   painter.legend_height(w, h, sc.legend.size())});
+  if (sc.overlay) return out;
   if (sc.style.colorbar)
     out.push_back({w - painter.colorbar_width(w, h, sc.range, sc.style.scale, sc.bar_label,
                                               sc.bar_note),
@@ -437,6 +441,7 @@ class SpritePass {
         cmap_(picture_colormap(sc.style)),
         profile_(sc.inset && first.has_velocity()),
         speed_values_(sc.style.field == Field::Speed || sc.style.field == Field::ScaledSpeed),
+        by_type_(!sc.overlay && sc.style.field == Field::Type),
         scaled_inset_(is_scaled(sc.style.field) && sc.v_rms > 0) {}
   void run(const std::vector<const Snapshot*>& snaps);
 
@@ -473,7 +478,7 @@ class SpritePass {
   SceneScratch& keep_;
   const BoxWrap& wrap_;
   const Colormap cmap_;
-  const bool profile_, speed_values_, scaled_inset_;
+  const bool profile_, speed_values_, by_type_, scaled_inset_;
   std::vector<Eigen::Vector3d> band_x_;
   std::vector<double> band_v_;
 };
@@ -490,9 +495,11 @@ void SpritePass::active(const Snapshot& s, bool moving, Rgb8 time_colour, Out& o
     else
       out.band_v.push_back(scaled_inset_ ? s.velocity[i].norm() / sc_.v_rms : s.velocity[i].norm());
   }
-  if (sc_.overlay || std::isnan(values[i])) {
-    push(out, wrap_(s.position[i]), s.radius[i], sc_.overlay ? time_colour : sc_.palette.inactive,
-         std::nanf(""));
+  if (sc_.overlay || by_type_ || std::isnan(values[i])) {
+    const Rgb8 c = sc_.overlay ? time_colour
+                   : by_type_  ? overlay_colour(s.type[i])
+                               : sc_.palette.inactive;
+    push(out, wrap_(s.position[i]), s.radius[i], c, std::nanf(""));
     return;
   }
   const double t = normalise(values[i], sc_.range, sc_.style.scale);
