@@ -22,7 +22,7 @@ void add_render_command(CLI::App& app) {
     std::vector<std::string> inputs;
     std::string out;
     int compression = 1;
-    long long frame = 0;
+    long long frame = -1;  // the last, as grainshock.read, ASE and OVITO take it
     ReadOptions read;
   };
   auto opt = std::make_shared<Options>();
@@ -34,7 +34,7 @@ void add_render_command(CLI::App& app) {
       ->required();
   sub->add_option("--frame", opt->frame,
                   "Frame of a multi-frame file, counted from 0; negative from the end (-1: the "
-                  "last), as ASE counts")
+                  "last), as ASE counts. Default: the last, as Python's grainshock.read")
       ->capture_default_str();
   sub->add_option("--dim", opt->read.dim, "Dimension of the files, if not the one they state")
       ->check(CLI::Range(1, 3));
@@ -54,9 +54,11 @@ void add_render_command(CLI::App& app) {
   for (const auto& n : render::Colormap::names()) maps += (maps.empty() ? "" : ", ") + n;
   sub->add_option("--colormap", opt->colormap, "One of " + maps)->capture_default_str();
   sub->add_option("--color-by", opt->colour_by,
-                  "auto (scaled-speed for a kick, else speed), scaled-speed, speed, "
-                  "scaled-radial-velocity, radial-velocity, first-collision, none (one colour), "
-                  "or the name of a numeric per-particle column of the file")
+                  "auto (scaled-speed for a kick, else speed; type for a file without velocities), "
+                  "scaled-speed, speed, scaled-radial-velocity, radial-velocity, first-collision, "
+                  "type (LAMMPS type, GSD typeid, XYZ species: a colour-blind-safe palette and a "
+                  "legend), none (one colour), or the name of a numeric per-particle column of "
+                  "the file")
       ->capture_default_str();
   sub->add_option("--range", opt->range,
                   "Fixed colour range MIN MAX (default: the scaled fields' fixed range, else "
@@ -128,6 +130,8 @@ void add_render_command(CLI::App& app) {
     std::vector<const Snapshot*> ptrs;
     for (const auto& s : snaps) ptrs.push_back(&s);
     render::settle_for_snapshots(o, ptrs, o.inputs.front());
+    if (!o.note.empty())
+      std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs.front().c_str(), o.note.c_str());
     // What the readers assumed where the files say nothing, each sentence once.
     std::set<std::string> said;
     for (std::size_t k = 0; k < snaps.size(); ++k)

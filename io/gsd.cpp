@@ -72,6 +72,8 @@ class GsdSource final : public FrameSource {
   const Entry* find(std::size_t k, std::string_view name, bool fallback = true) const;
   // Its values as doubles (N x M, row major).
   std::vector<double> values(const Entry& e) const;
+  // s.type from the typeid values, named by particles/types (default: one type, "A").
+  void read_types(std::size_t k, const std::vector<double>& typeid_values, Snapshot& s) const;
 
   MappedFile file_;
   std::vector<std::string_view> names_;
@@ -212,6 +214,27 @@ std::vector<double> GsdSource::values(const Entry& e) const {
   return v;
 }
 
+void GsdSource::read_types(std::size_t k, const std::vector<double>& ids, Snapshot& s) const {
+  s.type_names = {"A"};
+  if (const Entry* e = find(k, "particles/types")) {
+    if (e->type != I8 && e->type != U8 && e->type != Char)
+      fail("frame " + std::to_string(k) + ": particles/types is not of characters");
+    const std::vector<double> c = values(*e);
+    s.type_names.assign(e->n, "");
+    for (std::size_t t = 0; t < e->n; ++t)
+      for (std::uint32_t j = 0; j < e->m && c[t * e->m + j] != 0; ++j)
+        s.type_names[t] += static_cast<char>(c[t * e->m + j]);
+  }
+  s.type.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (!(ids[i] >= 0 && ids[i] < static_cast<double>(s.type_names.size())))
+      fail("frame " + std::to_string(k) + ": particle " + std::to_string(i) + " has typeid " +
+           std::to_string(ids[i]) + ", beyond the " + std::to_string(s.type_names.size()) +
+           " types named");
+    s.type[i] = static_cast<std::uint32_t>(ids[i]);
+  }
+}
+
 Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   const std::string where = "frame " + std::to_string(k);
   auto bad = [&](const std::string& what) { fail(where + ": " + what); };
@@ -287,8 +310,11 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   // Ours are unwrapped by their image counts (our snapshots are unwrapped); others' only when
   // asked, as OVITO draws them in the cell by default, with the counts as columns.
   const bool ours = file_.bytes().substr(48, 11) == std::string_view("grainshock\0", 11);
-  if (const Entry* img = per_particle("particles/image", 3, true)) {
-    const auto v = values(*img);
+  // A chunk left out is the schema's default (image 0, typeid 0, mass 1, charge 0): gsd.hoomd
+  // leaves a chunk of defaults out of frame 0, so others' files get their columns either way.
+  const Entry* img = per_particle("particles/image", 3, true);
+  if (img || !ours) {
+    const auto v = img ? values(*img) : std::vector<double>(3 * n, 0.0);
     if (ours || options.unwrap) {
       for (std::size_t i = 0; i < n; ++i)
         for (int a = 0; a < 3; ++a) s.position[i][a] += v[3 * i + a] * box[a];
@@ -303,9 +329,11 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
                           "counts times the box)");
     }
   }
-  // The schema's default velocity is 0: writers leave the chunk out when all are at rest.
-  s.velocity.assign(n, Eigen::Vector3d::Zero());
-  if (const Entry* vel = per_particle("particles/velocity", 3, true)) {
+  // The schema's default velocity is 0: writers leave the chunk out of a frame when all are at
+  // rest. A file with no velocity chunk in any frame (HOOMD's unless asked) has no velocities.
+  const bool has_velocity = std::find(names_.begin(), names_.end(), "particles/velocity") != names_.end();
+  if (has_velocity) s.velocity.assign(n, Eigen::Vector3d::Zero());
+  if (const Entry* vel = has_velocity ? per_particle("particles/velocity", 3, true) : nullptr) {
     const auto v = values(*vel);
     for (std::size_t i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a) {
@@ -323,9 +351,13 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
       s.radius[i] = v[i] / 2;
     }
   }
-  for (const char* name : {"particles/typeid", "particles/mass", "particles/charge"})
-    if (const Entry* e = per_particle(name, 1, true))
-      s.columns.push_back({std::string(name).substr(10), values(*e)});
+  for (auto [name, dflt] : {std::pair{"particles/typeid", 0.0}, std::pair{"particles/mass", 1.0},
+                            std::pair{"particles/charge", 0.0}}) {
+    const Entry* e = per_particle(name, 1, true);
+    if (e || !ours)
+      s.columns.push_back({std::string(name).substr(10), e ? values(*e) : std::vector<double>(n, dflt)});
+  }
+  if (const Column* id = s.column("typeid")) read_types(k, id->values, s);
   // Logged per-particle quantities of this frame: ours, then anyone's as extra columns.
   for (auto it = std::lower_bound(index_.begin(), index_.end(), k,
                                   [](const Entry&e, std::uint64_t f) { return e.frame < f; });

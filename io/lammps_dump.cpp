@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "io/particle_types.h"
 #include "io/text_scan.h"
 #include "sim/error.h"
 #include "sim/stop.h"
@@ -305,6 +306,8 @@ Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
         }
       },
       true);
+  // LAMMPS types are numbers; they name the particle types (what OVITO colours by).
+  if (const Column* t = s.column("type")) assign_types(s, t->values);
   return s;
 }
 

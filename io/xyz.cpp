@@ -1,5 +1,6 @@
 #include "io/xyz.h"
 
+#include "io/particle_types.h"
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "io/atomic_file.h"
 #include "io/atomic_masses.h"
+#include "io/particle_types.h"
 #include "io/text_scan.h"
 #include "sim/error.h"
 #include "sim/format.h"
@@ -430,7 +432,7 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   // Momenta without masses: ASE's rule, each mass from the element (Z if given, else species).
   const bool element_masses = l.has_mom && !l.has_vel && !l.has_mass;
   std::vector<std::string_view> species;
-  if (element_masses && l.has_species && l.z_column < 0) species.resize(n);
+  if (l.has_species) species.resize(n);  // the types, and the masses of momenta
   for (auto& c : s.columns) c.values.resize(n);
   const int check_from = stated > 0 && stated < 3 ? stated : 3;
 
@@ -509,7 +511,12 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   if (!mass.empty())
     for (std::size_t i = 0; i < n; ++i) s.velocity[i] /= mass[i];
   if (element_masses && n > 0)
-    divide_by_element_masses(s, species, l.z_column < 0 ? nullptr : &s.columns[l.z_column].values);
+    divide_by_element_masses(s, l.z_column < 0 ? species : std::vector<std::string_view>{},
+                             l.z_column < 0 ? nullptr : &s.columns[l.z_column].values);
+  // Species are types, but for our own files' "X" (ASE's dummy element: no element at all).
+  if (!species.empty() &&
+      std::any_of(species.begin(), species.end(), [](std::string_view v) { return v != "X"; }))
+    assign_types(s, species);
   return s;
 }
 

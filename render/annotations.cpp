@@ -7,14 +7,13 @@ Annotations annotate(Image& img, const Scene& sc, OverlayPainter& painter) {
   const Style& st = sc.style;
   const OverlayColours oc{sc.palette.text, sc.palette.background};
   const Colormap cmap = picture_colormap(st);
-  if (sc.overlay) {
-    if (st.legend) {
-      painter.legend(img, sc.legend, oc);
-      const int w = painter.legend_width(img.width, img.height, sc.legend);
-      a.panels.push_back({img.width - w, 0, img.width,
-                          painter.legend_height(img.width, img.height, sc.legend.size())});
-    }
-  } else {
+  if (st.legend && !sc.legend.empty()) {  // the times of an overlay, or the particle types
+    painter.legend(img, sc.legend, oc);
+    const int w = painter.legend_width(img.width, img.height, sc.legend);
+    a.panels.push_back({img.width - w, 0, img.width,
+                        painter.legend_height(img.width, img.height, sc.legend.size())});
+  }
+  if (!sc.overlay) {
     if (st.colorbar) {
       a.colorbar = painter.colorbar(img, cmap, sc.range, st.scale, sc.bar_label, sc.bar_note, oc);
       a.panels.push_back({a.colorbar.panel_x0, 0, img.width, img.height});

@@ -23,6 +23,12 @@ void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& 
     v.assign(n, 0.5);
     return;
   }
+  if (f == Field::Type) {
+    if (n > 0 && s.type.size() != n)
+      throw UserError("snapshot has no particle types; cannot colour by type");
+    for (std::size_t i = 0; i < n; ++i) v[i] = s.type[i];
+    return;
+  }
   if (f == Field::Column) {
     const Column* c = s.column(column);
     if (!c) throw UserError("snapshot has no column '" + column + "'; cannot colour by it");
@@ -72,7 +78,7 @@ void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& 
 }
 
 Field default_field(const Snapshot& s) {
-  if (!s.has_velocity()) return Field::Speed;  // field_values then names what is missing
+  if (!s.has_velocity()) return s.type.size() == s.size() && s.size() > 0 ? Field::Type : Field::None;
   for (std::size_t i = 0; i < s.size(); ++i)
     if (!s.active[i] && s.velocity[i].squaredNorm() == 0) return Field::ScaledSpeed;
   return Field::Speed;
@@ -82,12 +88,15 @@ std::vector<Field> available_fields(const Snapshot& s) {
   std::vector<Field> out;
   for (Field f : all_fields())
     if (f == Field::None || s.size() == 0 ||
-        (needs_velocity(f) ? s.has_velocity() : s.first_collision.size() == s.size()))
+        (needs_velocity(f)      ? s.has_velocity()
+         : f == Field::Type     ? s.type.size() == s.size()
+                                : s.first_collision.size() == s.size()))
       out.push_back(f);
   return out;
 }
 
-Field choose_field(const std::string& name, const Snapshot& s, const std::string& file) {
+Field choose_field(const std::string& name, const Snapshot& s, const std::string& file,
+                   std::string* note) {
   std::string list;
   for (Field f : available_fields(s)) {
     if (name == field_name(f)) return f;
@@ -96,10 +105,10 @@ Field choose_field(const std::string& name, const Snapshot& s, const std::string
   for (const Column& c : s.columns) list += ", " + c.name;
   if (name == "auto") {
     const Field f = default_field(s);
-    if (s.size() > 0 && !s.has_velocity())
-      throw UserError("snapshot '" + file +
-                      "' has no velocities (no velo property); cannot colour by " + field_name(f) +
-                      " (it can be coloured by " + list + ")");
+    if (note && s.size() > 0 && !s.has_velocity())
+      *note = std::string("no velocities: coloured by ") +
+              (f == Field::Type ? "particle type" : "nothing (one colour)") +
+              "; --color-by chooses (it can be coloured by " + list + ")";
     return f;
   }
   if (s.column(name)) return Field::Column;
@@ -107,7 +116,9 @@ Field choose_field(const std::string& name, const Snapshot& s, const std::string
     if (name == field_name(f))
       throw UserError(
           "snapshot '" + file + "' has no " +
-          (needs_velocity(f) ? "velocities (no velo property)" : "first_collision property") +
+          (needs_velocity(f)    ? "velocities (no velo property)"
+           : f == Field::Type   ? "particle types (type, typeid or species)"
+                                : "first_collision property") +
           "; cannot colour by " + name + " (it has: " + list + ")");
   throw UsageError("unknown --color-by '" + name + "'; snapshot '" + file + "' can be coloured by " +
                   list);

@@ -22,7 +22,8 @@ void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& 
                   std::vector<double>& v);
 
 // scaled-speed for a gas disturbed at rest (a kick: some particles have never moved), speed
-// otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly).
+// otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly);
+// without velocities, type where the file names types (OVITO's default), else none.
 Field default_field(const Snapshot& s);
 
 // The fields this snapshot can be coloured by (speeds need velocities, first-collision its column).
@@ -32,7 +33,10 @@ std::vector<Field> available_fields(const Snapshot& s);
 // NAME; a field's name wins over a column's). UserError naming the file and listing what the
 // snapshot can be coloured by (available_fields() and its columns) for an unknown name or one
 // the snapshot lacks data for.
-Field choose_field(const std::string& name, const Snapshot& s, const std::string& file);
+// "auto" for a snapshot without velocities is type where it has types, else none; `note` (if
+// given) then gets the sentence that says so, for the command's log.
+Field choose_field(const std::string& name, const Snapshot& s, const std::string& file,
+                   std::string* note = nullptr);
 
 // Robust range: the [plo, phi] percentiles of values[i] with mask[i] set (positive ones only
 // on a log scale); widened when empty or degenerate so that it is always lo < hi.

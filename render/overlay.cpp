@@ -149,10 +149,15 @@ BarRect OverlayPainter::colorbar(Image& img, const Colormap& cmap, std::pair<dou
   return r;
 }
 
-Rect OverlayPainter::top_left_label(Image& img, const std::string& text, const OverlayColours& c) {
-  const int u = unit(img.width, img.height);
+Rect OverlayPainter::top_left_label_panel(int width, int height, const std::string& text) {
+  const int u = unit(width, height);
   const int w = font_.width(text);
-  const Rect r{u / 2, u / 2, u + w + u / 2, u + font_.ascent() + font_.descent() + u / 3};
+  return {u / 2, u / 2, u + w + u / 2, u + font_.ascent() + font_.descent() + u / 3};
+}
+
+Rect OverlayPainter::top_left_label(Image& img, const std::string& text, const OverlayColours& c) {
+  const Rect r = top_left_label_panel(img.width, img.height, text);
+  const int u = unit(img.width, img.height);
   fill_rect(img, r.x0, r.y0, r.x1, r.y1, c.panel, 0.8f);
   font_.draw(img, u, u + font_.ascent(), text, c.text);
   return r;
@@ -189,16 +194,27 @@ void OverlayPainter::legend(Image& img, const std::vector<std::pair<Rgb8, std::s
   }
 }
 
+Rect OverlayPainter::scale_bar_panel(int width, int height, double pixels_per_unit,
+                                     int below_top) {
+  const int u = unit(width, height);
+  const double len = nice_step(width / pixels_per_unit, 5);  // about a fifth of the width
+  const int px = static_cast<int>(std::lround(len * pixels_per_unit));
+  const std::string text = tick_text(len) + " diameters";
+  const int th = std::max(2, u / 5);
+  const int y = (below_top >= 0 ? below_top : height) - u;
+  return {u / 2, y - font_.ascent() - font_.descent() - u / 2,
+          u + std::max(px, font_.width(text)) + u / 2, y + th + u / 2};
+}
+
 Rect OverlayPainter::scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c,
                                int below_top) {
+  const Rect r = scale_bar_panel(img.width, img.height, pixels_per_unit, below_top);
   const int u = unit(img.width, img.height);
-  const double len = nice_step(img.width / pixels_per_unit, 5);  // about a fifth of the width
+  const double len = nice_step(img.width / pixels_per_unit, 5);
   const int px = static_cast<int>(std::lround(len * pixels_per_unit));
   const std::string text = tick_text(len) + " diameters";
   const int th = std::max(2, u / 5);
   const int y = (below_top >= 0 ? below_top : img.height) - u;
-  const Rect r{u / 2, y - font_.ascent() - font_.descent() - u / 2,
-               u + std::max(px, font_.width(text)) + u / 2, y + th + u / 2};
   fill_rect(img, r.x0, r.y0, r.x1, r.y1, c.panel, 0.8f);
   fill_rect(img, u, y, u + px, y + th, c.text);
   font_.draw(img, u, y - u / 4 - font_.descent(), text, c.text);

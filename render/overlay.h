@@ -49,9 +49,11 @@ class OverlayPainter {
                      const std::string& label, const std::string& note);
   // Returns the label's panel.
   Rect top_left_label(Image& img, const std::string& text, const OverlayColours& c);
+  Rect top_left_label_panel(int width, int height, const std::string& text);  // where it goes
   // A small plot in the bottom-left corner: density as grey shells (left axis), mean speed as
   // dots in their colormap colour (right axis, the colour bar's mapping) against distance.
   int inset_width(int width, int height);  // pixels from the left edge the inset's panel takes
+  Rect inset_panel(int width, int height);  // where it goes
   Rect inset(Image& img, const InsetData& d, const Colormap& cmap, std::pair<double, double> range,
              Scale scale, const OverlayColours& c);
   void legend(Image& img, const std::vector<std::pair<Rgb8, std::string>>& entries,
@@ -60,6 +62,7 @@ class OverlayPainter {
   int legend_height(int width, int height, std::size_t entries);
   // A bar of a round length in particle diameters, bottom left, above `below_top` if given.
   Rect scale_bar(Image& img, double pixels_per_unit, const OverlayColours& c, int below_top = -1);
+  Rect scale_bar_panel(int width, int height, double pixels_per_unit, int below_top = -1);
 
  private:
   struct BarLayout {
@@ -71,7 +74,6 @@ class OverlayPainter {
   BarLayout layout(int width, int height, std::pair<double, double> range, Scale scale,
                    const std::string& label, const std::string& note);
   int unit(int width, int height);  // sets and returns the font's pixel size
-  Rect inset_panel(int width, int height);
   Font font_;
 };
 

@@ -52,7 +52,7 @@ void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& 
                         " is of the unbounded medium, which has no box (its Lattice is only the "
                         "region the engine addresses); use --framing fit");
   if (snaps.size() == 1) {
-    st.field = choose_field(c.colour_by, *snaps.front(), first_file);
+    st.field = choose_field(c.colour_by, *snaps.front(), first_file, &c.note);
     if (st.field == Field::Column) st.column = c.colour_by;
     st.scale = parse_scale(c.scale, st.field);
     check_style(st);

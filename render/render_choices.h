@@ -18,6 +18,9 @@ struct RenderChoices {
   std::vector<double> range, percentiles, centre;  // empty: not given
   bool no_colorbar = false, no_time = false, no_legend = false;
   bool inset = false, no_inset = false;
+  // Filled by settle_for_snapshots(): what "auto" chose where the file left it no choice (a file
+  // without velocities), for the command to say once; empty otherwise.
+  std::string note;
   // Filled by settle_choices() from the words above; the fields without a word (range per frame,
   // show inactive, scale bar, msaa, font, width, height, zoom, the 3D camera) are set directly.
   Style style;

@@ -81,7 +81,8 @@ struct SceneScratch {
 Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style, const View& view,
                   OverlayPainter& painter, SceneScratch* scratch = nullptr);
 
-// The colour of each snapshot in the multi-time overlay (Okabe-Ito, safe for colour blindness).
+// The colour of each snapshot in the multi-time overlay, and of each particle type (Okabe-Ito,
+// safe for colour blindness; it repeats after 7).
 Rgb8 overlay_colour(std::size_t index);
 // Throws UserError unless the style's words and range make sense.
 void check_style(const Style& style);

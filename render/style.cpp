@@ -7,7 +7,8 @@ namespace gs::render {
 const std::vector<Field>& all_fields() {
   static const std::vector<Field> f = {Field::ScaledSpeed,          Field::Speed,
                                        Field::ScaledRadialVelocity, Field::RadialVelocity,
-                                       Field::FirstCollision,       Field::None};
+                                       Field::FirstCollision,       Field::Type,
+                                       Field::None};
   return f;
 }
 
@@ -25,6 +26,8 @@ const char* field_name(Field f) {
       return "scaled-radial-velocity";
     case Field::Column:
       return "column";
+    case Field::Type:
+      return "type";
     case Field::None:
       return "none";
   }
@@ -58,6 +61,8 @@ const char* field_label(Field f) {
       return "v / v_rms";
     case Field::ScaledRadialVelocity:
       return "v_r / v_rms";
+    case Field::Type:
+      return "type";
     case Field::Column:
     case Field::None:
       return "";
@@ -77,7 +82,7 @@ Scale parse_scale(const std::string& name, Field f) {
 }
 
 bool needs_velocity(Field f) {
-  return f != Field::FirstCollision && f != Field::Column && f != Field::None;
+  return f != Field::FirstCollision && f != Field::Column && f != Field::Type && f != Field::None;
 }
 
 // 5-95% spans of the active particles' v / v_rms and v_r / v_rms (r = 0.1):
@@ -88,6 +93,7 @@ bool needs_velocity(Field f) {
 //   -0.02 to 1.53-1.61.
 std::optional<std::pair<double, double>> default_range(Field f, int dim) {
   if (f == Field::None) return std::pair{0.0, 1.0};  // field_values() gives 0.5: the map's middle
+  if (f == Field::Type) return std::pair{0.0, 1.0};  // the palette, not the map, colours types
   if (f == Field::ScaledSpeed) return dim == 3 ? std::pair{0.15, 1.9} : std::pair{0.3, 1.5};
   if (f == Field::ScaledRadialVelocity)
     return dim == 3 ? std::pair{-0.1, 1.6} : std::pair{0.3, 1.3};

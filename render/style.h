@@ -12,8 +12,8 @@ namespace gs::render {
 // active particles, the paper's scaling variable v t^(1-alpha) up to a constant (Figs. 4b, 5b):
 // their distribution hardly moves with time, so one fixed range means one scaled speed in
 // every frame of a movie. Column is a numeric per-particle column of the file (Style::column
-// names it: LAMMPS c_pe, GSD charge, ...); None draws every particle in one colour, so that a
-// file without velocities can be drawn.
+// names it: LAMMPS c_pe, GSD charge, ...); Type colours by particle type (Snapshot::type) from a
+// categorical palette with a legend of the type names; None draws every particle in one colour.
 enum class Field {
   Speed,
   RadialVelocity,
@@ -21,6 +21,7 @@ enum class Field {
   ScaledSpeed,
   ScaledRadialVelocity,
   Column,
+  Type,
   None
 };
 enum class Scale { Linear, Log };

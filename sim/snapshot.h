@@ -58,6 +58,10 @@ struct Snapshot {
   std::vector<std::uint8_t> active;       // 1 once a particle has collided; all 1 if unknown
   std::vector<double> first_collision;    // time of first collision (-1: never); may be empty
   std::vector<Column> columns;            // further numeric columns of the file
+  // Particle types of a file that names them (LAMMPS `type`, GSD `typeid` with `types`, XYZ
+  // species): an index into type_names each; both empty when the file has none.
+  std::vector<std::uint32_t> type;
+  std::vector<std::string> type_names;
   // What a reader assumed where the file says nothing (masses of momenta, time from steps,
   // positions folded into the cell), one sentence each, for the log of the command that reads it.
   std::vector<std::string> notes;

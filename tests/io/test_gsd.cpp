@@ -52,6 +52,8 @@ TEST(Gsd, ReadsWhatTheGsdModuleWrote) {
   EXPECT_EQ(b.radius, (std::vector<double>{0.5, 0.25, 1}));
   ASSERT_NE(b.column("typeid"), nullptr);
   EXPECT_EQ(b.column("typeid")->values, (std::vector<double>{0, 1, 1}));
+  EXPECT_EQ(b.type_names, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(b.type, (std::vector<std::uint32_t>{0, 1, 1}));
 }
 
 Snapshot sample() {

@@ -339,5 +339,73 @@ TEST(Interop, WeReadWhatTheGsdModuleWrites) {
   }
 }
 
+// What HOOMD writes unless asked: no velocity chunk in any frame, and gsd.hoomd leaves out frame
+// 0's chunks of defaults (the image counts here). No velocities is not every speed 0 (a picture
+// of all black on a made-up range); the image counts are columns of zeros; typeid names types.
+TEST(Interop, GsdWithoutVelocitiesHasNoneAndMissingChunksAreDefaults) {
+  if (!python_has("gsd.hoomd")) GTEST_SKIP() << kPython << " has no gsd (python3-gsd)";
+  const fs::path dir = scratch("gsd_no_velocity");
+  const std::string out = python(dir,
+                                 "import gsd.hoomd\n"
+                                 "f = gsd.hoomd.open('traj.gsd', 'wb')\n"
+                                 "for k in range(2):\n"
+                                 "    s = gsd.hoomd.Snapshot()\n"
+                                 "    s.configuration.step = k\n"
+                                 "    s.configuration.box = [10, 10, 0, 0, 0, 0]\n"
+                                 "    s.particles.N = 3\n"
+                                 "    s.particles.types = ['big', 'small']\n"
+                                 "    s.particles.typeid = [1, 0, 1]\n"
+                                 "    s.particles.position = [[1, 1, 0], [-2, 3, 0], [4, -4, 0]]\n"
+                                 "    s.particles.image = [[0, 0, 0], [k, 0, 0], [0, 0, 0]]\n"
+                                 "    f.append(s)\n"
+                                 "f.close()\n");
+  ASSERT_EQ(out.rfind("FAILED", 0), std::string::npos) << out;
+  const SnapshotFile f = open_snapshots((dir / "traj.gsd").string(), {});
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Snapshot s = f.read(k);
+    EXPECT_FALSE(s.has_velocity()) << "frame " << k;
+    EXPECT_EQ(s.type_names, (std::vector<std::string>{"big", "small"}));
+    EXPECT_EQ(s.type, (std::vector<std::uint32_t>{1, 0, 1}));
+    ASSERT_NE(s.column("image_x"), nullptr) << "frame " << k;
+    EXPECT_EQ(s.column("image_x")->values, (std::vector<double>{0, double(k), 0}));
+    ASSERT_NE(s.column("mass"), nullptr);
+    EXPECT_EQ(s.column("mass")->values, (std::vector<double>(3, 1.0)));
+  }
+}
+
+// ASE's species are the particle types (sorted by name), as OVITO colours them.
+TEST(Interop, AseSpeciesAreParticleTypes) {
+  if (!python_has("ase.io")) GTEST_SKIP() << kPython << " has no ase (python3-ase)";
+  const fs::path dir = scratch("ase_species");
+  const std::string out = python(dir,
+                                 "from ase import Atoms\n"
+                                 "import ase.io\n"
+                                 "a = Atoms('HeArHeNe', positions=[[0, 0, 0], [2, 0, 0], [4, 0, "
+                                 "0], [6, 0, 0]], cell=[10, 10, 10], pbc=True)\n"
+                                 "ase.io.write('a.extxyz', a)\n");
+  ASSERT_EQ(out.rfind("FAILED", 0), std::string::npos) << out;
+  const Snapshot s = read_snapshot((dir / "a.extxyz").string());
+  EXPECT_FALSE(s.has_velocity());
+  EXPECT_EQ(s.type_names, (std::vector<std::string>{"Ar", "He", "Ne"}));
+  EXPECT_EQ(s.type, (std::vector<std::uint32_t>{1, 0, 1, 2}));
+}
+
+// A LAMMPS dump of two atom types written by lmp itself: its types, in numeric order.
+TEST(Interop, LammpsTypesAreParticleTypes) {
+  if (!fs::exists("/usr/bin/lmp")) GTEST_SKIP() << "no /usr/bin/lmp (lammps)";
+  const fs::path dir = scratch("lmp_types");
+  std::ofstream(dir / "in.lmp") << "units lj\nboundary p p p\nregion b block 0 6 0 6 0 6\n"
+                                   "create_box 2 b\ncreate_atoms 1 single 1 1 1\n"
+                                   "create_atoms 2 single 3 3 3\ncreate_atoms 1 single 5 5 5\n"
+                                   "mass * 1\ndump d all custom 1 d.dump id type x y z\n"
+                                   "dump_modify d sort id\nrun 0\n";
+  const std::string cmd = "cd " + dir.string() + " && /usr/bin/lmp -in in.lmp -log none > out.txt 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "lmp failed; see " << (dir / "out.txt");
+  const Snapshot s = read_snapshot((dir / "d.dump").string());
+  EXPECT_FALSE(s.has_velocity());
+  EXPECT_EQ(s.type_names, (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(s.type, (std::vector<std::uint32_t>{0, 1, 0}));
+}
+
 }  // namespace
 }  // namespace gs

@@ -93,7 +93,8 @@ TEST(RenderCli, BadInputGivesOneLineAndNoPng) {
       write("malformed.xyz", "2\n" + kHeader + "X 1 1 0 0.1 0 0 0.5 1\nX 1 one 0 0 0 0 0.5 1\n"),
       "line 4");
   expect_one_line_error(
-      write("no_velocity.xyz", "1\nProperties=species:S:1:pos:R:3 Dim=2\nX 1 1 0\n"),
+      write("no_velocity.xyz", "1\nProperties=species:S:1:pos:R:3 Dim=2\nX 1 1 0\n") +
+          " --color-by speed",
       "no velocities");
   expect_one_line_error(good + " --width 0", "size");
   expect_one_line_error(good + " --height -5", "size");

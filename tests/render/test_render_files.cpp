@@ -88,9 +88,39 @@ TEST(ColourBy, NoneDrawsOneColourWithoutABar) {
   for (float shade : sc.shade) EXPECT_EQ(shade, 0.5f);
 }
 
+// Types are categories: each particle in its type's colour of the palette (Okabe-Ito), a legend
+// of the type names where the colour bar was.
+TEST(ColourBy, TypesGetAPaletteAndALegendOfTheirNames) {
+  Snapshot s = row_without_velocities();
+  s.type_names = {"Ar", "He", "Ne"};
+  for (std::size_t i = 0; i < s.size(); ++i) s.type.push_back(static_cast<std::uint32_t>(i % 3));
+  std::string note;
+  Style st;
+  st.field = choose_field("auto", s, "row.xyz", &note);
+  ASSERT_EQ(st.field, Field::Type) << "no velocities: type is the default";
+  EXPECT_NE(note.find("no velocities: coloured by particle type"), std::string::npos) << note;
+  const Scene sc = build_scene({&s}, st, view(), painter());
+  EXPECT_FALSE(sc.style.colorbar);
+  ASSERT_EQ(sc.legend.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(sc.legend[k].second, s.type_names[k]);
+    EXPECT_EQ(sc.legend[k].first, overlay_colour(k));
+  }
+  ASSERT_EQ(sc.sprites.size(), s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Rgb8 want = overlay_colour(i % 3);
+    EXPECT_EQ((Rgb8{sc.sprites[i].rgba[0], sc.sprites[i].rgba[1], sc.sprites[i].rgba[2]}), want)
+        << "particle " << i;
+  }
+  // Without types, a file without velocities is drawn in one colour, and says so.
+  const Snapshot plain = row_without_velocities();
+  EXPECT_EQ(choose_field("auto", plain, "row.dump", &note), Field::None);
+  EXPECT_NE(note.find("nothing (one colour)"), std::string::npos) << note;
+}
+
 TEST(ColourBy, UnknownOrMissingFieldsListWhatTheSnapshotHas) {
   const Snapshot s = row_without_velocities();
-  for (const char* name : {"potential", "speed", "auto"}) {
+  for (const char* name : {"potential", "speed", "type"}) {
     try {
       choose_field(name, s, "row.dump");
       ADD_FAILURE() << name << " accepted";
@@ -136,13 +166,42 @@ TEST(RenderFiles, AFileWithoutVelocitiesIsDrawnByAColumnOrInOneColour) {
   const Image a = read_png(by_pe.string()), b = read_png(plain.string());
   EXPECT_EQ(a.width, 200);
   EXPECT_NE(a.rgba, b.rgba) << "c_pe and one colour gave the same picture";
-  // The default (a speed) names what is missing and what the file can be coloured by instead.
-  r = render(dump.string() + " --out " + (dir / "auto.png").string());
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err_lines(), 1) << r.err;
-  EXPECT_NE(r.err.find("no velocities"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("none, id, type, c_pe"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(dir / "auto.png"));
+  // The default is the particle type (OVITO's for a file without velocities), said once with
+  // what else the file can be coloured by; the same picture as --color-by type.
+  const fs::path by_auto = dir / "auto.png", by_type = dir / "type.png";
+  r = render(dump.string() + " --width 200 --height 100 --out " + by_auto.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("no velocities: coloured by particle type"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("type, none, id, type, c_pe"), std::string::npos) << r.err;
+  r = render(dump.string() + " --color-by type --width 200 --height 100 --out " + by_type.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("coloured by particle type"), std::string::npos) << "asked: " << r.err;
+  EXPECT_EQ(read_png(by_auto.string()).rgba, read_png(by_type.string()).rgba);
+}
+
+// An ASE file of three species without velocities (assets/io/species_2d.extxyz): drawn by
+// species in the palette's first three colours, the note said once.
+TEST(RenderFiles, SpeciesOfAnXyzFileAreItsColours) {
+  const fs::path dir = scratch_dir("species");
+  fs::create_directories(dir);
+  const fs::path png = dir / "species.png";
+  const auto r = render(asset("species_2d.extxyz") + " --dim 2 --width 400 --height 300 --out " +
+                        png.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t said = 0;
+  for (std::size_t p = r.err.find("coloured by particle type"); p != std::string::npos;
+       p = r.err.find("coloured by particle type", p + 1))
+    ++said;
+  EXPECT_EQ(said, 1u) << r.err;
+  const Image img = read_png(png.string());
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Rgb8 c = overlay_colour(k);
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < img.rgba.size(); p += 4)
+      n += img.rgba[p] == c[0] && img.rgba[p + 1] == c[1] && img.rgba[p + 2] == c[2];
+    EXPECT_GT(n, 500u) << "type " << k << " (" << int(c[0]) << "," << int(c[1]) << ","
+                       << int(c[2]) << ")";
+  }
 }
 
 // A movie of stored dumps without velocities, coloured by their column; a frame without it is
@@ -225,6 +284,23 @@ TEST(RenderFiles, BadFilesAreNamedWithTheLineOrFrame) {
   std::memcpy(bad_index.data() + 8, &far, 8);  // the index location
   expect_refused(write(dir, "index.gsd", bad_index), "", "index");
   expect_refused(good, " --frame 1", "1 frame");
+}
+
+// One default frame for `render` and Python's grainshock.read: the last of a multi-frame file.
+TEST(RenderFiles, TheDefaultFrameIsTheLast) {
+  const fs::path dir = scratch_dir("default_frame");
+  fs::create_directories(dir);
+  const std::string file = asset("hoomd_2d_2frames.gsd") + " --color-by speed --no-time";
+  std::vector<std::vector<std::uint8_t>> pictures;
+  for (const char* frame : {"", " --frame -1", " --frame 0"}) {
+    const fs::path png = dir / "f.png";
+    const auto r = render(file + frame + " --width 200 --height 150 --out " + png.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    pictures.push_back(read_png(png.string()).rgba);
+    fs::remove(png);
+  }
+  EXPECT_EQ(pictures[0], pictures[1]) << "the default is not the last frame";
+  EXPECT_NE(pictures[0], pictures[2]) << "the two frames drew alike: the test cannot tell";
 }
 
 }  // namespace
