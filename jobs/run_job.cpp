@@ -1,4 +1,5 @@
 #include "jobs/run_job.h"
+#include "jobs/view_job.h"
 
 #include <algorithm>
 #include <atomic>
@@ -35,7 +36,7 @@ namespace fs = std::filesystem;
 constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary.json",
                                        "timing.json", "checkpoint.bin", "checkpoint.prev.bin",
                                        "movie.mp4",   "movie.parts",    "snapshots",
-                                       "frames"};
+                                       "frames",      "index.html"};
 
 // The stages of a job, kept in checkpoints: a resume redoes the unfinished ones. A movie drawn
 // during sampling is in place at kMovieMade; one made after it (a resumed run's) is not.
@@ -368,6 +369,7 @@ RunResult run_job(const RunOptions& o, bool resume) {
                     timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
+  if (!stopped && o.page) write_folder_page(dir.string(), "index.html");
   if (!o.quiet)
     std::fprintf(
         stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",
