@@ -115,6 +115,12 @@ Gathered gather(const ViewOptions& o) {
       throw UserError("'" + in + "' is neither a snapshot file nor a folder");
     }
   }
+  // A file named twice (alone and in its folder) is shown once.
+  std::set<std::string> seen;
+  std::vector<std::string> files;
+  for (const auto& f : g.files)
+    if (seen.insert(fs::weakly_canonical(f).string()).second) files.push_back(f);
+  g.files = std::move(files);
   g.page.title = o.inputs.size() == 1 ? o.inputs.front() : o.inputs.front() + " and others";
   return g;
 }
@@ -128,6 +134,9 @@ render::PageFrame make_frame(const ViewOptions& o, const Snapshot& s, const std:
     *alpha = theory_alpha(p);  // the plots' slopes, for a run folder or its files
   }
   render::RenderChoices c = o.choices;
+  // A page shows any file: one without velocities is drawn in one colour, where `render`
+  // would ask for --color-by none.
+  if (c.colour_by == "auto" && !s.has_velocity()) c.colour_by = "none";
   render::settle_for_snapshots(c, {&s}, name);
   return render::make_page_frame(s, c.style);
 }
@@ -164,6 +173,7 @@ void choose_frames(const ViewOptions& o, std::vector<FrameRef>& refs, std::size_
   std::size_t held = 0;
   for (FrameRef& r : refs) {
     r.frame = make_frame(o, r.read(), r.name, &c.alpha);
+    r.frame.source = r.name;
     r.size = page_bytes(r.frame);
     held += r.size;
     if (held > budget) r.frame.bytes = std::string();  // made again if kept
@@ -189,6 +199,7 @@ void choose_frames(const ViewOptions& o, std::vector<FrameRef>& refs, std::size_
     }
     if (refs[i].frame.bytes.empty() && refs[i].frame.count > 0)
       refs[i].frame = make_frame(o, refs[i].read(), refs[i].name);
+    refs[i].frame.source = refs[i].name;
     c.frames.push_back(std::move(refs[i].frame));
   }
   c.dropped = result.dropped;
@@ -207,8 +218,8 @@ std::string page_of(const ViewOptions& o, Gathered& g, std::vector<FrameRef>& re
   c.lut = render::page_lut(choices.style);
   const auto bg = render::palette(choices.style.background).background;
   std::copy(bg.begin(), bg.end(), c.background);
-  std::size_t fixed = 300000 + c.timeseries.size() * 2 + c.report.size() * 2;
-  for (const auto& im : c.images) fixed += page_bytes(im);
+  // The page without frames: the template, the tables, report and pictures.
+  const std::size_t fixed = page_html(c).size();
   choose_frames(o, refs, fixed, c, result);
   if (!c.frames.empty()) c.dim = c.frames.front().dim;
   c.colorbar = choices.style.field != render::Field::None;
@@ -227,7 +238,8 @@ std::string view_page(const ViewOptions& o, ViewResult* result) {
   for (const auto& path : g.files) {
     const auto file = std::make_shared<SnapshotFile>(open_snapshots(path, o.read));
     for (std::size_t k = 0; k < file->frame_count(); ++k)
-      refs.push_back({[file, k] { return file->read(k); }, path, {}, 0});
+      refs.push_back({[file, k] { return file->read(k); },
+                      file->frame_count() > 1 ? path + " frame " + std::to_string(k) : path, {}, 0});
   }
   ViewResult r;
   std::string html = page_of(o, g, refs, r);

@@ -15,6 +15,7 @@ namespace {
 Json frame_json(const render::PageFrame& f) {
   auto triple = [&](const double* v) { return Json::array({v[0], v[1], v[2]}); };
   Json j = {{"label", f.label},
+            {"source", f.source},
             {"count", f.count},
             {"origin", triple(f.origin)},
             {"lo", triple(f.lo)},
@@ -28,6 +29,7 @@ Json frame_json(const render::PageFrame& f) {
             {"range", Json::array({f.range.first, f.range.second})},
             {"bar_label", f.bar_label},
             {"bar_note", f.bar_note},
+            {"colorbar", f.colorbar},
             {"columns", f.columns},
             {"bytes", f.bytes.size()}};
   j["t"] = f.has_time ? Json(f.t) : Json(nullptr);
@@ -99,10 +101,6 @@ std::string base64(std::string_view in) {
 
 std::size_t page_bytes(const render::PageFrame& f) {
   return (f.bytes.size() + 2) / 3 * 4 + 600;  // a frame's header is a few hundred bytes
-}
-
-std::size_t page_bytes(const PageImage& image) {
-  return (image.png.size() + 2) / 3 * 4 + image.name.size() + 100;
 }
 
 std::string page_html(const PageContent& c) {

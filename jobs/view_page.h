@@ -38,7 +38,6 @@ struct PageContent {
 std::string base64(std::string_view bytes);
 // The bytes a frame adds to the page (its base64 and its header), for the size budget.
 std::size_t page_bytes(const render::PageFrame& f);
-std::size_t page_bytes(const PageImage& image);
 // The whole page. Every text of the inputs (names, comments, labels, report.md) goes into the
 // JSON header, where '<', '>' and '&' are written as \u escapes: no file can end a <script>
 // element; the page's script shows them as text, never as markup.

@@ -143,6 +143,7 @@ PageFrame make_page_frame(const Snapshot& s, const Style& style) {
   f.range = sc.range;
   f.bar_label = sc.bar_label;
   f.bar_note = sc.bar_note;
+  f.colorbar = style.field != Field::None;
   frame_fit(s, sc.camera.origin, f);
   const std::vector<std::uint32_t> idx = sprite_indices(s, st, sc.camera);
   GS_CHECK(idx.size() == sc.sprites.size());

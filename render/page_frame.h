@@ -16,6 +16,7 @@ struct PageFrame {
   int dim = 2;
   std::size_t count = 0;  // particles drawn
   std::string label;      // "t = ...   t_paper = ..." or "step N", as the PNG's
+  std::string source;     // the file (and frame) it was read from
   double t = 0, t_paper = 0;
   bool has_time = true, has_t_paper = false;
   std::int64_t step = -1;
@@ -30,6 +31,7 @@ struct PageFrame {
   bool uniform_radius = true;
   std::pair<double, double> range{0, 1};
   std::string bar_label, bar_note;
+  bool colorbar = true;  // false for one colour (--color-by none)
   std::vector<std::string> columns;  // per-particle values shown on hover (speed first if any)
   // Little-endian sections, each padded to 4 bytes: uint16 positions (x, y[, z] per particle),
   // uint8 colour (0..254: the colormap at k / 254; 255: the inactive grey), uint32 particle

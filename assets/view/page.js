@@ -327,8 +327,8 @@ void main() {
   }
   function drawBar(f) {
     const bar = $('gs-bar');
-    bar.hidden = !H.colorbar;
-    if (!H.colorbar) return;
+    bar.hidden = !H.colorbar || !f.colorbar || state.fixed !== null;
+    if (bar.hidden) return;
     const c = $('gs-bar-canvas'), g = c.getContext('2d'), img = g.createImageData(24, 256);
     for (let y = 0; y < 256; ++y) {
       const k = Math.round((255 - y) / 255 * 254);
@@ -353,7 +353,8 @@ void main() {
     const f = H.frames[state.frame];
     $('gs-slider').value = String(state.frame);
     $('gs-time').textContent = frameLabel(f);
-    $('gs-frame-info').textContent = 'frame ' + (state.frame + 1) + ' of ' + H.frames.length + ': ' +
+    $('gs-frame-info').textContent = 'frame ' + (state.frame + 1) + ' of ' + H.frames.length +
+      (f.source ? ' (' + f.source + ')' : '') + ': ' +
       f.count + ' particles drawn; positions stored to ' + fmt(f.error_diameters) +
       ' diameters (16 bits in the frame\'s bounding box)';
     drawBar(f);
@@ -502,8 +503,9 @@ void main() {
     const full = lx.length ? [Math.min(...lx), Math.max(...lx), Math.min(...ly), Math.max(...ly)] : [0, 1, 0, 1];
     if (full[1] - full[0] < 1e-9) { full[0] -= 0.5; full[1] += 0.5; }
     if (full[3] - full[2] < 1e-9) { full[2] -= 0.5; full[3] += 0.5; }
-    const padY = 0.05 * (full[3] - full[2]);
-    full[2] -= padY; full[3] += padY;
+    // Room round the data, so that the samples at the ends are drawn whole.
+    const padX = 0.03 * (full[1] - full[0]), padY = 0.05 * (full[3] - full[2]);
+    full[0] -= padX; full[1] += padX; full[2] -= padY; full[3] += padY;
     let v = full.slice();
     const M = { l: 62, r: 12, t: 24, b: 36 };
     const api = { name: spec.name, samples: spec.x.length, drawn: pts.length, screen: [] };

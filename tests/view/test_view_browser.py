@@ -67,6 +67,11 @@ def run2d():
     return d
 
 
+def in_time_order(run):
+    """A run's snapshot files (snapshots/tsim_T.xyz) by time."""
+    return sorted((run / "snapshots").iterdir(), key=lambda p: float(p.stem.split("_")[1]))
+
+
 def open_page(browser, page):
     browser.get_log("browser")
     browser.get_log("performance")
@@ -146,7 +151,7 @@ def colour_steps(browser, page_img, ref_img, table, count=12):
 def test_2d_page_matches_render(browser, run2d, tmp_path):
     page = tmp_path / "kick.html"
     gs("view", run2d, "--out", page)
-    snaps = sorted((run2d / "snapshots").iterdir())
+    snaps = in_time_order(run2d)
     assert len(snaps) == 2
     refs = []
     for k, s in enumerate(snaps):
@@ -240,13 +245,53 @@ def test_nothing_injects(browser, tmp_path):
     open_page(browser, page)
     assert browser.execute_script("return window.__pwned === undefined")
     assert HOSTILE in browser.find_element("id", "gs-report").text
-    assert "<img src=x onerror=window.__pwned=3>" in browser.find_element("id", "gs-title").text
+    assert "<img src=x onerror=window.__pwned=3>.xyz" in browser.find_element(
+        "id", "gs-frame-info").text
     assert browser.execute_script("return document.querySelectorAll('#gs-report img').length") == 0
     # Seen to fail: the same markup pasted into a page unescaped does run.
     bad = tmp_path / "bad.html"
     bad.write_text("<html><body><script>var x = '" + HOSTILE + "';</script></body></html>")
     open_page(browser, bad)
     assert browser.execute_script("return window.__pwned") in (1, 2)
+    # ... and the request check sees the request its <img src=x> makes.
+    assert problems(browser, bad)[1] != []
+
+
+@pytest.fixture(scope="module")
+def run3d():
+    d = OUT / "run3d"
+    shutil.rmtree(d, ignore_errors=True)
+    d.parent.mkdir(parents=True, exist_ok=True)
+    gs("run", "--dim", "3", "--particles", "8000", "--t-max", "200", "--snapshot-times", "60",
+       "200", "--out", d, "--quiet")
+    return d
+
+
+def test_3d_page_matches_render(browser, run3d, tmp_path):
+    page = run3d / "index.html"  # written by run
+    snaps = in_time_order(run3d)
+    refs = []
+    for k, s in enumerate(snaps):
+        refs.append(tmp_path / f"ref{k}.png")
+        gs("render", s, "--out", refs[-1], "--width", W, "--height", H, "--no-colorbar",
+           "--no-time", "--no-inset")
+    open_page(browser, page)
+    errors, requests = problems(browser, page)
+    assert errors == [] and requests == [], (errors, requests)
+    browser.execute_script(f"window.gsView.fixSize({W}, {H})")
+    last = canvas_image(browser)
+    assert iou(lit(last), lit(png(refs[-1]))) >= 0.9
+    assert iou(lit(last), lit(png(refs[0]))) < 0.9
+    assert iou(np.roll(lit(last), 4, axis=0), lit(png(refs[-1]))) < 0.9
+
+
+def test_lammps_file(browser, tmp_path):
+    page = tmp_path / "lammps.html"
+    gs("view", ASSETS / "io" / "custom_3d.lammpstrj", "--out", page)
+    open_page(browser, page)
+    errors, requests = problems(browser, page)
+    assert errors == [] and requests == [], (errors, requests)
+    assert browser.execute_script("return window.gsView.header.frames.length") >= 1
 
 
 def test_missing_webgl_says_so(browser, run2d, tmp_path):
