@@ -13,8 +13,9 @@ namespace gs::app {
 void add_view_command(CLI::App& app) {
   auto opt = std::make_shared<jobs::ViewOptions>();
   auto* sub = app.add_subcommand(
-      "view", "Write one self-contained HTML page (offline) of a run, ensemble, figures or movie "
-              "folder, or of snapshot files: every frame with a time slider, the plots, the report");
+      "view",
+      "Write one self-contained HTML page (offline) of a run, ensemble, figures or movie "
+      "folder, or of snapshot files: every frame with a time slider, the plots, the report");
   sub->add_option("inputs", opt->inputs,
                   "Folders (run, ensemble, figures, movie, or any folder of snapshot files) or "
                   "snapshot files (extended XYZ, LAMMPS dump, GSD; several frames each too)")

@@ -38,7 +38,9 @@ std::string format_mb(double mb) {
   return b;
 }
 
-bool is_png(const fs::path& p) { return p.extension() == ".png"; }
+bool is_png(const fs::path& p) {
+  return p.extension() == ".png";
+}
 
 // The regular files of `dir` in name order.
 std::vector<fs::path> files_in(const fs::path& dir) {
@@ -102,8 +104,8 @@ void gather_folder(const fs::path& dir, const ViewOptions& o, const fs::path& pa
 
 Gathered gather(const ViewOptions& o) {
   Gathered g;
-  const fs::path page_dir = fs::path(o.out).parent_path().empty() ? fs::path(".")
-                                                                   : fs::path(o.out).parent_path();
+  const fs::path page_dir =
+      fs::path(o.out).parent_path().empty() ? fs::path(".") : fs::path(o.out).parent_path();
   for (const auto& in : o.inputs) {
     if (fs::is_directory(in)) {
       gather_folder(in, o, page_dir, g);
@@ -152,7 +154,8 @@ std::vector<std::size_t> fit_frames(const std::vector<FrameRef>& refs, std::size
   for (std::size_t k = n; k >= 1; --k) {
     std::vector<std::size_t> pick;
     for (std::size_t j = 0; j < k; ++j) {
-      const std::size_t i = k == 1 ? n - 1 : static_cast<std::size_t>(std::llround(double(j) * (n - 1) / (k - 1)));
+      const std::size_t i =
+          k == 1 ? n - 1 : static_cast<std::size_t>(std::llround(double(j) * (n - 1) / (k - 1)));
       if (pick.empty() || pick.back() != i) pick.push_back(i);
     }
     std::size_t total = 0;
@@ -234,12 +237,19 @@ std::string page_of(const ViewOptions& o, Gathered& g, std::vector<FrameRef>& re
 std::string view_page(const ViewOptions& o, ViewResult* result) {
   if (o.inputs.empty()) throw UsageError("view needs a folder or snapshot files");
   Gathered g = gather(o);
+  if (g.files.empty() && g.page.timeseries.empty() && g.page.report.empty() &&
+      g.page.images.empty())
+    throw UserError("'" + g.page.title +
+                    "' holds nothing to view (no snapshot files, timeseries.csv, report.md or "
+                    "pictures)");
   std::vector<FrameRef> refs;
   for (const auto& path : g.files) {
     const auto file = std::make_shared<SnapshotFile>(open_snapshots(path, o.read));
     for (std::size_t k = 0; k < file->frame_count(); ++k)
       refs.push_back({[file, k] { return file->read(k); },
-                      file->frame_count() > 1 ? path + " frame " + std::to_string(k) : path, {}, 0});
+                      file->frame_count() > 1 ? path + " frame " + std::to_string(k) : path,
+                      {},
+                      0});
   }
   ViewResult r;
   std::string html = page_of(o, g, refs, r);
@@ -275,6 +285,7 @@ void write_folder_page(const std::string& dir, const std::string& page) {
   o.inputs = {dir};
   o.out = (fs::path(dir) / page).string();
   o.quiet = true;
+  o.max_mb = 20;  // a folder's page is opened often and copied around: frames left out beyond
   try {
     write_view(o);
   } catch (const UserError& e) {

@@ -13,8 +13,8 @@ struct ViewOptions {
   // Folders (a run's, an ensemble's, a figures folder, any folder of snapshot files) or snapshot
   // files of any format `render` reads, several frames each too.
   std::vector<std::string> inputs;
-  std::string out;       // NAME.html
-  double max_mb = 50;    // the page's size budget: frames are dropped evenly in time beyond it
+  std::string out;     // NAME.html
+  double max_mb = 50;  // the page's size budget: frames are dropped evenly in time beyond it
   ReadOptions read;
   render::RenderChoices choices;  // colours as `render` takes them (--color-by, --colormap, ...)
   bool quiet = false;
@@ -35,7 +35,7 @@ std::string view_page(const std::vector<const Snapshot*>& snaps, const ViewOptio
 
 // The page a command leaves in its folder: DIR/index.html of a run or ensemble, report.html of
 // a figures folder. Quiet; a failure is reported on stderr as a warning and leaves the rest of
-// the folder as it is (the results are written already).
+// the folder as it is (the results are written already). Its size budget is 20 MB.
 void write_folder_page(const std::string& dir, const std::string& page);
 
 }  // namespace gs::jobs

@@ -62,13 +62,20 @@ Json header_json(const PageContent& c) {
   for (const auto& f : c.frames) frames.push_back(frame_json(f));
   Json images = Json::array();
   for (const auto& im : c.images) images.push_back(im.name);
-  return {{"title", c.title},       {"kind", c.kind},
-          {"dim", c.dim},           {"alpha", c.alpha},
-          {"colorbar", c.colorbar}, {"background", {c.background[0], c.background[1], c.background[2]}},
-          {"frames", frames},       {"dropped", c.dropped},
-          {"timeseries", c.timeseries}, {"mean", c.mean},
-          {"report", c.report},     {"images", images},
-          {"movie", c.movie},       {"notes", c.notes}};
+  return {{"title", c.title},
+          {"kind", c.kind},
+          {"dim", c.dim},
+          {"alpha", c.alpha},
+          {"colorbar", c.colorbar},
+          {"background", {c.background[0], c.background[1], c.background[2]}},
+          {"frames", frames},
+          {"dropped", c.dropped},
+          {"timeseries", c.timeseries},
+          {"mean", c.mean},
+          {"report", c.report},
+          {"images", images},
+          {"movie", c.movie},
+          {"notes", c.notes}};
 }
 
 void replace_marker(std::string& page, std::string_view marker, const std::string& with) {
@@ -85,7 +92,8 @@ std::string base64(std::string_view in) {
   out.reserve((in.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 2 < in.size(); i += 3) {
-    const unsigned v = std::uint8_t(in[i]) << 16 | std::uint8_t(in[i + 1]) << 8 | std::uint8_t(in[i + 2]);
+    const unsigned v =
+        std::uint8_t(in[i]) << 16 | std::uint8_t(in[i + 1]) << 8 | std::uint8_t(in[i + 2]);
     for (int s = 18; s >= 0; s -= 6) out += k[(v >> s) & 63];
   }
   if (i < in.size()) {
@@ -109,14 +117,16 @@ std::string page_html(const PageContent& c) {
   data += "<script type=\"application/octet-stream\" id=\"gs-lut\">" +
           base64({reinterpret_cast<const char*>(c.lut.data()), c.lut.size()}) + "</script>\n";
   for (std::size_t k = 0; k < c.frames.size(); ++k)
-    data += "<script type=\"application/octet-stream\" id=\"gs-frame-" + std::to_string(k) +
-            "\">" + base64(c.frames[k].bytes) + "</script>\n";
+    data += "<script type=\"application/octet-stream\" id=\"gs-frame-" + std::to_string(k) + "\">" +
+            base64(c.frames[k].bytes) + "</script>\n";
   for (std::size_t k = 0; k < c.images.size(); ++k)
-    data += "<script type=\"application/octet-stream\" id=\"gs-image-" + std::to_string(k) +
-            "\">" + base64(c.images[k].png) + "</script>\n";
+    data += "<script type=\"application/octet-stream\" id=\"gs-image-" + std::to_string(k) + "\">" +
+            base64(c.images[k].png) + "</script>\n";
   std::string page(page_assets::html());
-  replace_marker(page, "<!--GS:STYLE-->", "<style>\n" + std::string(page_assets::css()) + "</style>");
-  replace_marker(page, "<!--GS:SCRIPT-->", "<script>\n" + std::string(page_assets::js()) + "</script>");
+  replace_marker(page, "<!--GS:STYLE-->",
+                 "<style>\n" + std::string(page_assets::css()) + "</style>");
+  replace_marker(page, "<!--GS:SCRIPT-->",
+                 "<script>\n" + std::string(page_assets::js()) + "</script>");
   replace_marker(page, "<!--GS:DATA-->", data);
   return page;
 }

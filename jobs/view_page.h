@@ -23,7 +23,7 @@ struct PageContent {
   int dim = 0;
   double alpha = 0;  // the paper's exponent for the plots' slopes; 0: none drawn
   bool colorbar = true;
-  std::vector<std::uint8_t> lut;   // render::page_lut
+  std::vector<std::uint8_t> lut;  // render::page_lut
   std::uint8_t background[3] = {255, 255, 255};
   std::vector<render::PageFrame> frames;  // in time order
   std::vector<std::string> dropped;       // labels of the frames left out for the size budget
@@ -31,7 +31,7 @@ struct PageContent {
   bool mean = false;                      // the latter: columns c and c_sem
   std::string report;                     // a figures folder's report.md
   std::vector<PageImage> images;
-  std::string movie;  // URL of the movie relative to the page; empty: none
+  std::string movie;               // URL of the movie relative to the page; empty: none
   std::vector<std::string> notes;  // sentences shown at the top
 };
 

@@ -17,10 +17,31 @@ void append(std::string& out, const T* data, std::size_t n) {
   out.resize((out.size() + 3) / 4 * 4, '\0');  // the next section starts 4-byte aligned
 }
 
+// IEEE 754 binary16, rounded to nearest (ties away from zero: hover values need 3 digits, not
+// the last bit): the hover columns take half the bytes of float32.
+std::uint16_t half(float v) {
+  std::uint32_t x;
+  std::memcpy(&x, &v, 4);
+  const std::uint16_t sign = (x >> 16) & 0x8000;
+  const std::uint32_t abs = x & 0x7fffffff;
+  if (abs > 0x7f800000) return sign | 0x7e00;   // NaN
+  if (abs >= 0x477ff000) return sign | 0x7c00;  // beyond 65504: infinity
+  if (abs < 0x33000000) return sign;            // below half the least
+  const int e = static_cast<int>(abs >> 23) - 127;
+  if (e < -14) {  // subnormal
+    const std::uint32_t m = (abs & 0x7fffff) | 0x800000;
+    const int shift = -e - 14 + 13;
+    return sign | static_cast<std::uint16_t>((m + (1u << (shift - 1))) >> shift);
+  }
+  const std::uint32_t r = abs + 0x1000;  // round the 13 dropped bits
+  return sign | static_cast<std::uint16_t>(((r >> 23) - 112) << 10 | ((r >> 13) & 0x3ff));
+}
+
 // The file's index of each sprite, in the scene's drawing order: build_scene draws the inactive
 // particles it shows first, then the active ones (or, before any collision, the moving ones),
 // each layer in the file's order, those the camera cannot see left out.
-std::vector<std::uint32_t> sprite_indices(const Snapshot& s, const Style& style, const Camera& cam) {
+std::vector<std::uint32_t> sprite_indices(const Snapshot& s, const Style& style,
+                                          const Camera& cam) {
   const bool any = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
   const bool moving = !any && s.has_velocity();
   std::vector<std::uint32_t> idx;
@@ -30,9 +51,7 @@ std::vector<std::uint32_t> sprite_indices(const Snapshot& s, const Style& style,
         idx.push_back(static_cast<std::uint32_t>(i));
   };
   if (style.show_inactive) pass([&](std::size_t i) { return !s.active[i]; });
-  pass([&](std::size_t i) {
-    return s.active[i] || (moving && s.velocity[i].squaredNorm() > 0);
-  });
+  pass([&](std::size_t i) { return s.active[i] || (moving && s.velocity[i].squaredNorm() > 0); });
   return idx;
 }
 
@@ -57,7 +76,8 @@ void pack_positions(const Scene& sc, PageFrame& f) {
   for (int k = 0; k < dim; ++k) f.lo[k] = INFINITY, f.hi[k] = -INFINITY;
   for (const Sprite& p : sc.sprites) {
     const float c[3] = {p.x, p.y, p.z};
-    for (int k = 0; k < dim; ++k) f.lo[k] = std::min(f.lo[k], double(c[k])), f.hi[k] = std::max(f.hi[k], double(c[k]));
+    for (int k = 0; k < dim; ++k)
+      f.lo[k] = std::min(f.lo[k], double(c[k])), f.hi[k] = std::max(f.hi[k], double(c[k]));
   }
   double worst = 0;
   for (int k = 0; k < dim; ++k) {
@@ -81,24 +101,24 @@ void pack_values(const Snapshot& s, const Scene& sc, const std::vector<std::uint
                  PageFrame& f) {
   std::vector<std::uint8_t> colour(sc.shade.size());
   for (std::size_t i = 0; i < colour.size(); ++i)
-    colour[i] = std::isnan(sc.shade[i])
-                    ? 255
-                    : static_cast<std::uint8_t>(std::lround(std::clamp(sc.shade[i], 0.0f, 1.0f) * 254));
+    colour[i] =
+        std::isnan(sc.shade[i])
+            ? 255
+            : static_cast<std::uint8_t>(std::lround(std::clamp(sc.shade[i], 0.0f, 1.0f) * 254));
   append(f.bytes, colour.data(), colour.size());
   append(f.bytes, idx.data(), idx.size());
-  f.uniform_radius = std::all_of(idx.begin(), idx.end(), [&](std::uint32_t i) {
-    return s.radius[i] == f.r_max;
-  });
+  f.uniform_radius =
+      std::all_of(idx.begin(), idx.end(), [&](std::uint32_t i) { return s.radius[i] == f.r_max; });
   if (!f.uniform_radius) {
     std::vector<std::uint16_t> r(idx.size());
     for (std::size_t i = 0; i < idx.size(); ++i)
       r[i] = static_cast<std::uint16_t>(std::lround(s.radius[idx[i]] / f.r_max * 65535));
     append(f.bytes, r.data(), r.size());
   }
-  std::vector<float> v(idx.size());
+  std::vector<std::uint16_t> v(idx.size());
   auto column = [&](const std::string& name, auto&& value) {
     f.columns.push_back(name);
-    for (std::size_t i = 0; i < idx.size(); ++i) v[i] = static_cast<float>(value(idx[i]));
+    for (std::size_t i = 0; i < idx.size(); ++i) v[i] = half(static_cast<float>(value(idx[i])));
     append(f.bytes, v.data(), v.size());
   };
   if (!s.velocity.empty()) column("speed", [&](std::size_t i) { return s.velocity[i].norm(); });

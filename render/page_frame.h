@@ -31,11 +31,12 @@ struct PageFrame {
   bool uniform_radius = true;
   std::pair<double, double> range{0, 1};
   std::string bar_label, bar_note;
-  bool colorbar = true;  // false for one colour (--color-by none)
+  bool colorbar = true;              // false for one colour (--color-by none)
   std::vector<std::string> columns;  // per-particle values shown on hover (speed first if any)
   // Little-endian sections, each padded to 4 bytes: uint16 positions (x, y[, z] per particle),
   // uint8 colour (0..254: the colormap at k / 254; 255: the inactive grey), uint32 particle
-  // index in the file, uint16 radius / r_max (only when radii differ), float32 per column.
+  // index in the file, uint16 radius / r_max (only when radii differ), binary16 (half float,
+  // 3 significant digits) per column.
   std::string bytes;
 };
 

@@ -44,10 +44,16 @@
     };
     const data = { pos: take(Uint16Array, n * d), colour: take(Uint8Array, n), index: take(Uint32Array, n) };
     data.radius = f.uniform_radius ? null : take(Uint16Array, n);
-    data.columns = f.columns.map(() => take(Float32Array, n));
+    data.columns = f.columns.map(() => take(Uint16Array, n));
     if (cache.size > 6) cache.delete(cache.keys().next().value);
     cache.set(k, data);
     return data;
+  }
+  // A binary16 value (the hover columns).
+  function half(h) {
+    const e = (h >> 10) & 31, m = h & 1023;
+    const v = e === 0 ? m * Math.pow(2, -24) : e === 31 ? (m ? NaN : Infinity) : (1 + m / 1024) * Math.pow(2, e - 15);
+    return h & 0x8000 ? -v : v;
   }
   // Particle i of frame k relative to the frame's origin.
   function relPos(f, data, i) {
@@ -397,7 +403,7 @@ void main() {
     const lines = ['particle ' + d.index[i] + ' (index in the file)',
       'position ' + p.slice(0, H.dim).map((v, a) => fmt(v + f.origin[a])).join(', ') +
       '  (± ' + fmt(f.error_diameters) + ' diameters)'];
-    f.columns.forEach((name, c) => lines.push(name + ' = ' + fmt(d.columns[c][i])));
+    f.columns.forEach((name, c) => lines.push(name + ' = ' + fmt(+half(d.columns[c][i]).toPrecision(4))));
     return lines.join('\n');
   }
 
@@ -621,15 +627,21 @@ void main() {
       imageIds.set(name, fig.id);
     });
   }
-  // Inline markdown: `code`, **bold**, and the names of embedded pictures linked to them.
+  // Inline markdown: `code`, **bold**, [text](target), and the names of embedded pictures linked
+  // to them. A link's target is followed only to a picture of the page (nothing is fetched).
   function inline(parent, text) {
-    const re = /(`[^`]*`|\*\*[^*]+\*\*|[A-Za-z0-9_.\-]+\.png)/g;
+    const re = /(`[^`]*`|\*\*[^*]+\*\*|\[[^\]]*\]\([^)]*\)|[A-Za-z0-9_.\-]+\.png)/g;
     let last = 0, m;
     while ((m = re.exec(text))) {
       if (m.index > last) parent.appendChild(document.createTextNode(text.slice(last, m.index)));
       const s = m[0];
       if (s[0] === '`') parent.appendChild(el('code', s.slice(1, -1)));
       else if (s[0] === '*') parent.appendChild(el('strong', s.slice(2, -2)));
+      else if (s[0] === '[') {
+        const [, label, target] = /^\[([^\]]*)\]\(([^)]*)\)$/.exec(s);
+        if (imageIds.has(target)) { const a = el('a', label); a.href = '#' + imageIds.get(target); parent.appendChild(a); }
+        else parent.appendChild(document.createTextNode(label));
+      }
       else if (imageIds.has(s)) { const a = el('a', s); a.href = '#' + imageIds.get(s); parent.appendChild(a); }
       else parent.appendChild(document.createTextNode(s));
       last = m.index + s.length;

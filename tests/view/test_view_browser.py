@@ -176,6 +176,19 @@ def test_2d_page_matches_render(browser, run2d, tmp_path):
        "--no-time", "--no-inset", "--colormap", "viridis")
     assert colour_steps(browser, last, png(wrong), table) > 2
 
+    # Clicking a disc names it: its index in the file and its position (within the stated error).
+    x, y, _, index = particle_pixel(browser, 5)
+    canvas = browser.find_element("id", "gs-canvas")
+    webdriver.ActionChains(browser).move_to_element_with_offset(
+        canvas, x - W // 2, y - H // 2).click().perform()
+    picked = browser.find_element("id", "gs-picked").text
+    assert picked.startswith(f"particle {index} ")
+    line = snaps[1].read_text().splitlines()[2 + index].split()
+    shown = [float(v) for v in picked.split("position ")[1].split("  ")[0].split(", ")]
+    err = browser.execute_script("return window.gsView.header.frames[1].error_diameters")
+    assert max(abs(a - float(b)) for a, b in zip(shown, line[1:3])) <= 2 * err + 2e-3
+    assert "speed = " in picked
+
     # The slider (arrow key) changes the frame, its time label and the picture.
     label = browser.find_element("id", "gs-time").text
     browser.find_element("id", "gs-slider").send_keys(Keys.ARROW_LEFT)
@@ -313,3 +326,19 @@ def test_budget_drops_frames_evenly(run2d, tmp_path):
     assert "left out" in r.stderr
     assert page.stat().st_size < size
     assert "frames were left out" in page.read_text()
+
+
+def test_movie_beside_or_a_note(browser, run2d, tmp_path):
+    folder = tmp_path / "run"
+    shutil.copytree(run2d, folder)
+    (folder / "movie.mp4").write_bytes(b"")  # present when the page is written, unplayable
+    gs("view", folder, "--out", folder / "page.html")
+    open_page(browser, folder / "page.html")
+    time.sleep(0.5)
+    assert browser.execute_script("return document.querySelector('#gs-movie video') === null")
+    assert "is not beside this page" in browser.find_element("id", "gs-movie").text
+    # Seen to fail: a page of a folder without a movie has no movie section at all.
+    (folder / "movie.mp4").unlink()
+    gs("view", folder, "--out", folder / "page2.html")
+    open_page(browser, folder / "page2.html")
+    assert not browser.find_element("id", "gs-movie").is_displayed()
