@@ -31,6 +31,7 @@ Json frame_json(const render::PageFrame& f) {
             {"bar_note", f.bar_note},
             {"colorbar", f.colorbar},
             {"columns", f.columns},
+            {"column_exact", f.column_exact},
             {"bytes", f.bytes.size()}};
   j["t"] = f.has_time ? Json(f.t) : Json(nullptr);
   j["t_paper"] = f.has_t_paper ? Json(f.t_paper) : Json(nullptr);

@@ -116,10 +116,22 @@ void pack_values(const Snapshot& s, const Scene& sc, const std::vector<std::uint
     append(f.bytes, r.data(), r.size());
   }
   std::vector<std::uint16_t> v(idx.size());
+  std::vector<float> exact(idx.size());
+  // Whole numbers (ids, types, counts) are kept exactly as float32, the rest as half floats.
   auto column = [&](const std::string& name, auto&& value) {
     f.columns.push_back(name);
-    for (std::size_t i = 0; i < idx.size(); ++i) v[i] = half(static_cast<float>(value(idx[i])));
-    append(f.bytes, v.data(), v.size());
+    bool whole = true;
+    for (std::size_t i = 0; i < idx.size(); ++i) {
+      const double x = value(idx[i]);
+      whole = whole && x == std::floor(x) && std::abs(x) < 0x1p24;
+      exact[i] = static_cast<float>(x);
+      v[i] = half(exact[i]);
+    }
+    f.column_exact.push_back(whole);
+    if (whole)
+      append(f.bytes, exact.data(), exact.size());
+    else
+      append(f.bytes, v.data(), v.size());
   };
   if (!s.velocity.empty()) column("speed", [&](std::size_t i) { return s.velocity[i].norm(); });
   if (!s.first_collision.empty())

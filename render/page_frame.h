@@ -33,10 +33,11 @@ struct PageFrame {
   std::string bar_label, bar_note;
   bool colorbar = true;              // false for one colour (--color-by none)
   std::vector<std::string> columns;  // per-particle values shown on hover (speed first if any)
+  std::vector<bool> column_exact;    // a column of whole numbers, stored as float32
   // Little-endian sections, each padded to 4 bytes: uint16 positions (x, y[, z] per particle),
   // uint8 colour (0..254: the colormap at k / 254; 255: the inactive grey), uint32 particle
-  // index in the file, uint16 radius / r_max (only when radii differ), binary16 (half float,
-  // 3 significant digits) per column.
+  // index in the file, uint16 radius / r_max (only when radii differ), per column binary16 (half
+  // float, 3 significant digits) or, for whole numbers, float32 (exact).
   std::string bytes;
 };
 

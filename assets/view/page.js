@@ -44,7 +44,7 @@
     };
     const data = { pos: take(Uint16Array, n * d), colour: take(Uint8Array, n), index: take(Uint32Array, n) };
     data.radius = f.uniform_radius ? null : take(Uint16Array, n);
-    data.columns = f.columns.map(() => take(Uint16Array, n));
+    data.columns = f.columns.map((c, k) => f.column_exact[k] ? take(Float32Array, n) : take(Uint16Array, n));
     if (cache.size > 6) cache.delete(cache.keys().next().value);
     cache.set(k, data);
     return data;
@@ -348,7 +348,7 @@ void main() {
     const [lo, hi] = f.range, log = / \(log\)$/.test(f.bar_label);
     for (const s of [0, 0.25, 0.5, 0.75, 1]) {
       const v = log ? lo * Math.pow(hi / lo, s) : lo + s * (hi - lo);
-      const t = el('span', fmt(v));
+      const t = el('span', fmt(+v.toPrecision(3)));
       t.style.top = (100 * (1 - s)) + '%';
       ticks.appendChild(t);
     }
@@ -403,7 +403,8 @@ void main() {
     const lines = ['particle ' + d.index[i] + ' (index in the file)',
       'position ' + p.slice(0, H.dim).map((v, a) => fmt(v + f.origin[a])).join(', ') +
       '  (± ' + fmt(f.error_diameters) + ' diameters)'];
-    f.columns.forEach((name, c) => lines.push(name + ' = ' + fmt(+half(d.columns[c][i]).toPrecision(4))));
+    f.columns.forEach((name, c) => lines.push(name + ' = ' + (f.column_exact[c] ? String(d.columns[c][i])
+      : fmt(+half(d.columns[c][i]).toPrecision(4)))));
     return lines.join('\n');
   }
 
