@@ -87,7 +87,11 @@ void gather_folder(const fs::path& dir, const ViewOptions& o, const fs::path& pa
     c.timeseries = read_bytes(dir / "timeseries_mean.csv");
     c.mean = true;
   }
-  if (ensemble) c.alpha = theory_alpha(read_spec(dir / "ensemble.toml").physics);
+  if (ensemble) {
+    const EnsembleSpec spec = read_spec(dir / "ensemble.toml");
+    c.alpha = theory_alpha(spec.physics);
+    c.dim = spec.physics.dim;  // the slopes' d, with no frame to tell it
+  }
   if (fs::exists(dir / "report.md")) c.report = read_bytes(dir / "report.md");
   for (const fs::path& sub : {dir, dir / "frames"})
     for (const auto& p : files_in(sub))

@@ -54,3 +54,16 @@ def test_view_refuses_other_things():
         gs.view(42)
     with pytest.raises(ValueError, match="neither a snapshot file nor a folder"):
         gs.view("/no/such/place")
+
+
+def test_ensemble_leaves_its_page_unless_told(out_dir):
+    for name, flags in (("e", []), ("quiet", ["--no-page"])):
+        cli = run_command("ensemble", "--dim", 2, "--particles", 2000, "--t-max", 100,
+                          "--realisations", 2, "--threads", 1, "--out", out_dir / name,
+                          "--quiet", *flags)
+        assert cli.returncode == 0, cli.stderr
+    h = header((out_dir / "e" / "index.html").read_text())
+    # The means with their errors, and the slopes of the paper's alpha = 1/(d+1) in 2D.
+    assert h["kind"] == "ensemble" and h["mean"] and "active_sem" in h["timeseries"].split("\n")[0]
+    assert h["dim"] == 2 and h["alpha"] == pytest.approx(1 / 3)
+    assert not (out_dir / "quiet" / "index.html").exists()
