@@ -365,11 +365,11 @@ RunResult run_job(const RunOptions& o, bool resume) {
   }
   loop->finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop->simulation();
+  if (!stopped && o.page) write_folder_page(dir.string(), "index.html");  // before summary.json
   write_file_atomic(dir / "timing.json",
                     timing_json(loop->timing(), seconds_since(t2), movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));  // the last result
   if (!stopped) loop->remove_checkpoints();
-  if (!stopped && o.page) write_folder_page(dir.string(), "index.html");
   if (!o.quiet)
     std::fprintf(
         stderr, "grainshock: %s %s: %lld collisions in %.3g s; results in %s%s\n",

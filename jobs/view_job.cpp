@@ -128,6 +128,9 @@ Gathered gather(const ViewOptions& o) {
     if (seen.insert(fs::weakly_canonical(f).string()).second) files.push_back(f);
   g.files = std::move(files);
   g.page.title = o.inputs.size() == 1 ? o.inputs.front() : o.inputs.front() + " and others";
+  // A folder's own page names nothing outside it, so that the same results in two folders (a
+  // run and its resumed twin) have the same page, byte for byte.
+  if (o.folder_page) g.page.title = "the " + g.page.kind + " folder of this page";
   return g;
 }
 
@@ -249,9 +252,11 @@ std::string view_page(const ViewOptions& o, ViewResult* result) {
   std::vector<FrameRef> refs;
   for (const auto& path : g.files) {
     const auto file = std::make_shared<SnapshotFile>(open_snapshots(path, o.read));
+    const std::string name =
+        o.folder_page ? fs::relative(path, o.inputs.front()).generic_string() : path;
     for (std::size_t k = 0; k < file->frame_count(); ++k)
       refs.push_back({[file, k] { return file->read(k); },
-                      file->frame_count() > 1 ? path + " frame " + std::to_string(k) : path,
+                      file->frame_count() > 1 ? name + " frame " + std::to_string(k) : name,
                       {},
                       0});
   }
@@ -289,7 +294,8 @@ void write_folder_page(const std::string& dir, const std::string& page) {
   o.inputs = {dir};
   o.out = (fs::path(dir) / page).string();
   o.quiet = true;
-  o.max_mb = 20;  // a folder's page is opened often and copied around: frames left out beyond
+  o.max_mb = 20;
+  o.folder_page = true;  // a folder's page is opened often and copied around: frames left out beyond
   try {
     write_view(o);
   } catch (const UserError& e) {

@@ -18,6 +18,8 @@ struct ViewOptions {
   ReadOptions read;
   render::RenderChoices choices;  // colours as `render` takes them (--color-by, --colormap, ...)
   bool quiet = false;
+  // The page a command leaves in its folder (inputs: that folder): names relative to it.
+  bool folder_page = false;
 };
 
 struct ViewResult {
