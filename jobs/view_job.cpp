@@ -103,7 +103,12 @@ void gather_folder(const fs::path& dir, const ViewOptions& o, const fs::path& pa
                       " beside this page; moved alone, the page shows no movie.");
   }
   const fs::path snaps = fs::is_directory(dir / "snapshots") ? dir / "snapshots" : dir;
-  for (auto& f : snapshot_files(snaps, o.read)) g.files.push_back(f);
+  for (auto& f : snapshot_files(snaps, o.read)) {
+    // The elastic comparison (Fig. 1b, r = 1) is another run: its picture is among the pictures,
+    // its snapshot not in this run's time slider.
+    if (run && fs::path(f).filename().string().starts_with("elastic_")) continue;
+    g.files.push_back(f);
+  }
 }
 
 Gathered gather(const ViewOptions& o) {
