@@ -39,6 +39,7 @@ void add_bench_command(CLI::App& app) {
     bench::add_io_cases(cases);
     bench::add_medium_cases(cases);
     bench::add_memory_cases(cases);
+    bench::add_view_cases(cases);
     auto selected = [&](const bench::Case& c) {
       if (opt->filter.empty()) return opt->all || !c.heavy;
       for (const auto& f : opt->filter)

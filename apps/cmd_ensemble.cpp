@@ -31,6 +31,8 @@ void add_ensemble_command(CLI::App& app) {
                   "Worker threads K per process (results do not depend on it)")
       ->capture_default_str();
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
+  sub->add_flag_callback("--no-page", [opt] { opt->page = false; },
+                         "Write no DIR/index.html (the page `grainshock view DIR` writes)");
   sub->add_option("--per-decade", opt->per_decade, "Samples per decade of the logarithmic grid")
       ->capture_default_str();
   sub->add_option(

@@ -60,6 +60,8 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
                  "Figure formats, comma-separated: png, svg, pdf (the .gp scripts write any)")
       ->capture_default_str();
   add_output_options(sub, o.out, o.force, o.quiet);
+  sub.add_flag_callback("--no-page", [&o] { o.page = false; },
+                        "Write no report.html beside report.md (the page of `grainshock view`)");
   sub.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
   sub.add_option("--seed", o.seed, "Master seed of every ensemble")->capture_default_str();
   add_checkpoint_minutes_option(sub, o.checkpoint_minutes);

@@ -6,9 +6,11 @@
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "io/atomic_file.h"
 #include "io/snapshot_file.h"
 #include "render/colormap.h"
 #include "render/field.h"
+#include "render/gltf.h"
 #include "render/png.h"
 #include "render/render_choices.h"
 #include "render/renderer.h"
@@ -45,9 +47,17 @@ void add_render_command(CLI::App& app) {
   sub->add_flag("--unwrap", opt->read.unwrap,
                 "LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
                 "flags) instead of the positions in the cell, which OVITO draws by default");
-  sub->add_option("--out", opt->out, "PNG file to write (NAME.png)")
+  sub->add_option("--out", opt->out,
+                  "PNG file to write (NAME.png), or NAME.glb: the 3D scene as glTF 2.0 (one "
+                  "snapshot; spheres instanced, each with its PNG colour)")
       ->required()
-      ->check(png_name());
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            const bool glb = text.size() > 4 && text.compare(text.size() - 4, 4, ".glb") == 0;
+            if (glb || png_name()(text).empty()) return std::string();
+            return "'" + text + "' ends in neither .png (a picture) nor .glb (a 3D scene)";
+          },
+          "FILE.png|FILE.glb", "picture or scene name"));
   sub->add_option("--width", opt->view.width, "Picture width in pixels")->capture_default_str();
   sub->add_option("--height", opt->view.height, "Picture height in pixels")->capture_default_str();
   std::string maps;
@@ -139,6 +149,11 @@ void add_render_command(CLI::App& app) {
         if (said.insert(note).second)
           std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs[k].c_str(), note.c_str());
 
+    if (o.out.size() > 4 && o.out.compare(o.out.size() - 4, 4, ".glb") == 0) {
+      if (snaps.size() != 1) throw UsageError("--out " + o.out + ": a scene holds one snapshot");
+      write_file_atomic(o.out, render::glb_scene(snaps.front(), o.style));
+      return;
+    }
     render::Renderer renderer(backend);
     const render::Image img = renderer.render(ptrs, o.style, o.view);
     throw_if_stopped();

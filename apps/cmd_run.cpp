@@ -25,6 +25,8 @@ void add_run_command(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "Simulate one realisation and write a run folder");
   add_run_flags(*sub, *opt);
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
+  sub->add_flag_callback("--no-page", [opt] { opt->page = false; },
+                         "Write no DIR/index.html (the page `grainshock view DIR` writes)");
   add_checkpoint_option(*sub, opt->checkpoint_every);
   sub->footer(
       "Unless one of --t-max, --snapshot-times, --png, --compare-elastic or --movie is given "

@@ -23,5 +23,6 @@ void add_figures_command(CLI::App& app);
 // of its figures.toml, on `threads`; returns the exit code.
 int resume_figures(const std::filesystem::path& dir, int threads, bool quiet);
 void add_compare_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 
 }  // namespace gs::app

@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   add_merge_command(app);
   add_figures_command(app);
   add_compare_command(app);
+  add_view_command(app);
   add_completion_command(app);
   // After the subcommands, so that completion and suggestions see them all.
   app.set_version_flag("--version", GRAINSHOCK_VERSION);

@@ -31,6 +31,7 @@ void add_figures_cases(std::vector<Case>& cases);
 void add_io_cases(std::vector<Case>& cases);
 void add_medium_cases(std::vector<Case>& cases);
 void add_memory_cases(std::vector<Case>& cases);
+void add_view_cases(std::vector<Case>& cases);
 
 // CPU seconds of this process (user + system), for "per CPU-second" figures.
 double cpu_seconds();

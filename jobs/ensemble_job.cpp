@@ -1,4 +1,5 @@
 #include "jobs/ensemble_job.h"
+#include "jobs/view_job.h"
 
 #include <unistd.h>
 
@@ -145,7 +146,9 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
     fs::remove_all(dir / "realisations", ec);  // --force starts again
   }
   write_file_atomic(dir / "ensemble.toml", job_toml(job));
-  return run_job(dir, job, o.threads, o.quiet, o.progress, o.messages, ranks);
+  EnsembleResult r = run_job(dir, job, o.threads, o.quiet, o.progress, o.messages, ranks);
+  if (o.page && !r.interrupted) write_folder_page(dir.string(), "index.html");
+  return r;
 }
 
 bool holds_unfinished_ensemble(const fs::path& dir) {

@@ -23,6 +23,7 @@ struct EnsembleOptions {
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::string out = "grainshock-ensemble";
   bool force = false, quiet = false, per_realisation = false;
+  bool page = true;  // DIR/index.html, the page of `grainshock view`
   ProgressFactory progress;  // the line of the run; none by default
   MessageSink messages;      // notes and warnings (a state in flight skipped); none by default
   int per_decade = 20, bins = 60, resamples = 1000;

@@ -1,4 +1,5 @@
 #include "jobs/figures_job.h"
+#include "jobs/view_job.h"
 
 #include <sys/resource.h>
 
@@ -178,6 +179,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
   const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, resumed, plan.fig1};
   write_figures_summary(dir, run, results, cmp, problems);
   write_figures_report(dir, run, results, x, cmp, problems);
+  if (o.page) write_folder_page(dir.string(), "report.html");
   if (costs) costs->figures = figure_meter.read();
   return {dir, run.wall, problems};
 }

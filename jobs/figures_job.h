@@ -25,6 +25,7 @@ struct FiguresOptions {
   int sample = 2;
   std::string out = "grainshock-figures";
   bool force = false, quiet = false;
+  bool page = true;  // report.html beside report.md, the page of `grainshock view`
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::uint64_t seed = 1;
   // Wall minutes between two writes of each running realisation's state beside the case's

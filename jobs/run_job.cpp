@@ -1,4 +1,5 @@
 #include "jobs/run_job.h"
+#include "jobs/view_job.h"
 
 #include <algorithm>
 #include <atomic>
@@ -37,7 +38,7 @@ namespace fs = std::filesystem;
 constexpr const char* kRunOutputs[] = {"run.toml",    "timeseries.csv", "summary.json",
                                        "timing.json", "checkpoint.bin", "checkpoint.prev.bin",
                                        "movie.mp4",   "movie.parts",    "snapshots",
-                                       "frames"};
+                                       "frames",      "index.html"};
 
 // The stages of a job, kept in checkpoints: a resume redoes the unfinished ones. A movie drawn
 // during sampling is in place at kMovieMade; one made after it (a resumed run's) is not.
@@ -434,6 +435,7 @@ void finish_run(RunLoop& loop, const fs::path& dir, const RunOptions& o, double 
                 double movie_s, bool stopped) {
   loop.finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop.simulation();
+  if (!stopped && o.page) write_folder_page(dir.string(), "index.html");  // before summary.json
   write_file_atomic(dir / "timing.json", timing_json(loop.timing(), after_s, movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));
   if (!stopped) loop.remove_checkpoints();

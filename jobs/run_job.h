@@ -25,6 +25,7 @@ struct RunOptions {
   // Neither of these shapes the results.
   std::string out = "grainshock-run";
   bool force = false, quiet = false;
+  bool page = true;  // DIR/index.html, the page of `grainshock view`
   double checkpoint_every = 300;
   ProgressFactory progress;  // the line of each pass; none by default
   MessageSink messages;      // notes (what the run is doing, where its results are); none

@@ -18,4 +18,5 @@ PYBIND11_MODULE(_grainshock, m) {
   gs::py::bind_movie(m);
   gs::py::bind_analysis(m);
   gs::py::bind_ensemble(m);
+  gs::py::bind_view(m);
 }

@@ -19,6 +19,7 @@ void bind_render(pb::module_& m);
 void bind_movie(pb::module_& m);
 void bind_analysis(pb::module_& m);
 void bind_ensemble(pb::module_& m);
+void bind_view(pb::module_& m);
 
 // The physics flags as keyword arguments (names with underscores, the flags' defaults and
 // checks: UserError with the command line's message). TypeError for an unknown keyword.

@@ -22,6 +22,8 @@ packages=(
 if [ "$mode" = test ]; then
   packages+=(libopenmpi-dev openmpi-bin python3-ase python3-gsd lammps)
   packages+=(python3-pytest python3-matplotlib jupyter-nbconvert python3-ipykernel)
+  # The pages of `grainshock view`, loaded in a real browser (tests/view).
+  packages+=(chromium chromium-driver python3-selenium)
 fi
 missing=()
 for p in "${packages[@]}"; do

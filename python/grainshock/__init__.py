@@ -24,7 +24,7 @@ __all__ = [
     "Comparison", "Image", "Movie", "Simulation", "Snapshot", "band_packing", "compare", "ensemble",
     "frame_count", "from_ase", "inner_edge_speed", "observables", "radial_distribution",
     "radial_profile", "read", "render", "scaled_radial_distribution",
-    "scaled_speed_distribution", "speed_distribution", "to_ase",
+    "scaled_speed_distribution", "speed_distribution", "to_ase", "view", "Page",
 ]
 
 
@@ -42,6 +42,51 @@ def render(snapshots, *, color_by="auto", width=1920, height=1080, inset=None, *
     """
     return _c._render(snapshots, color_by=color_by, width=width, height=height, inset=inset,
                       **options)
+
+
+class Page:
+    """The page of `grainshock view`: one self-contained HTML file (no network request).
+
+    A notebook shows it inline (an iframe whose srcdoc is the page); save(path) writes it.
+    """
+
+    def __init__(self, html):
+        self.html = html
+
+    def save(self, path):
+        """Writes the page to `path` (NAME.html)."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self.html)
+
+    def _repr_html_(self):
+        import html as _html
+        return ('<iframe style="width:100%;height:760px;border:1px solid #ccc" '
+                'sandbox="allow-scripts" srcdoc="' + _html.escape(self.html, quote=True) +
+                '"></iframe>')
+
+
+def view(x, *, color_by="auto", colormap="magma", background="light", max_mb=50,
+         show_inactive=False):
+    """The page of `grainshock view` for a Simulation (its snapshot now), a Snapshot, a list of
+    snapshots, or a folder or file path (a run, ensemble or figures folder, snapshot files), or
+    a list of paths. The colours are those of render() with the same color_by, colormap and
+    background. Returns a Page: shown inline in Jupyter, .save(path) writes it.
+    """
+    import os
+    if isinstance(x, Simulation):
+        x = x.snapshot()
+    if isinstance(x, Snapshot):
+        x = [x]
+    if isinstance(x, (str, os.PathLike)):
+        x = [x]
+    items = list(x)
+    if items and all(isinstance(i, Snapshot) for i in items):
+        return Page(_c._view_snapshots(items, color_by, colormap, background, max_mb,
+                                       show_inactive))
+    if items and all(isinstance(i, (str, os.PathLike)) for i in items):
+        return Page(_c._view_paths([os.fspath(i) for i in items], color_by, colormap,
+                                   background, max_mb, show_inactive))
+    raise TypeError("view: give a Simulation, a Snapshot, a list of snapshots, or paths")
 
 
 class Movie:

@@ -32,7 +32,8 @@ std::vector<std::string> subcommands() {
 TEST(CliUsage, HelpListsEverySubcommandAndTheExitCodes) {
   const auto names = subcommands();
   for (const char* want :
-       {"run", "render", "movie", "ensemble", "merge", "figures", "bench", "compare", "completion"})
+       {"run", "render", "movie", "ensemble", "merge", "figures", "bench", "compare", "completion",
+        "view"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   const auto r = grainshock("--help");
   EXPECT_EQ(r.exit_code, 0);

@@ -33,3 +33,5 @@ def test_notebook_executes_and_shows_a_frame(tmp_path):
     outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]
     assert any("image/png" in o.get("data", {}) for o in outputs)
     assert any("collisions" in o.get("text", "") for o in outputs)
+    # The page of every frame, inline (grainshock.view).
+    assert any("<iframe" in o.get("data", {}).get("text/html", "") for o in outputs)

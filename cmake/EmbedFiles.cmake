@@ -1,0 +1,20 @@
+# Script mode: writes OUT, a C++ source defining `std::string_view NAME()` for each input file
+# given as NAME=PATH in FILES (entries separated by commas), the file's bytes as a char array. Run at build time so
+# that the page's hand-written HTML, CSS and JavaScript stay files of their own under assets/.
+string(REPLACE "," ";" FILES "${FILES}")
+set(body "// Generated from the files under assets/ by cmake/EmbedFiles.cmake; do not edit.\n")
+string(APPEND body "#include <string_view>\nnamespace ${NAMESPACE} {\n")
+foreach(entry IN LISTS FILES)
+  string(REPLACE "=" ";" parts "${entry}")
+  list(GET parts 0 name)
+  list(GET parts 1 path)
+  file(READ "${path}" hex HEX)
+  string(LENGTH "${hex}" n)
+  math(EXPR bytes "${n} / 2")
+  string(REGEX REPLACE "([0-9a-f][0-9a-f])" "'\\\\x\\1'," chars "${hex}")
+  string(APPEND body "static const char k_${name}[] = {${chars} 0};\n")
+  string(APPEND body "std::string_view ${name}() { return {k_${name}, ${bytes}}; }\n")
+endforeach()
+string(APPEND body "}\n")
+file(WRITE "${OUT}.tmp" "${body}")
+file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
