@@ -40,7 +40,7 @@ void add_render_command(CLI::App& app) {
   sub->add_option("--dt", opt->read.dt,
                   "Time step of files that give steps but no time (LAMMPS dumps without ITEM: "
                   "TIME, HOOMD GSD): time = step x DT; without it such frames are labelled by step")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub->add_flag("--unwrap", opt->read.unwrap,
                 "LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
                 "flags) instead of the positions in the cell, which OVITO draws by default");

@@ -326,6 +326,9 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   for (const char* name : {"particles/typeid", "particles/mass", "particles/charge"})
     if (const Entry* e = per_particle(name, 1, true))
       s.columns.push_back({std::string(name).substr(10), values(*e)});
+  check_extent(s, file_.path(), k,
+               {"particles/position", "particles/position", "particles/position"},
+               "particles/diameter");
   // Logged per-particle quantities of this frame: ours, then anyone's as extra columns.
   for (auto it = std::lower_bound(index_.begin(), index_.end(), k,
                                   [](const Entry&e, std::uint64_t f) { return e.frame < f; });

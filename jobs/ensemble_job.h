@@ -10,6 +10,7 @@
 
 #include "analysis/ensemble_fits.h"
 #include "analysis/ensemble_output.h"
+#include "analysis/ensemble_runner.h"
 #include "analysis/ensemble_sums.h"
 #include "jobs/progress.h"
 #include "sim/config.h"
@@ -19,7 +20,7 @@ namespace gs::jobs {
 struct EnsembleOptions {
   PhysicsConfig physics;
   long long realisations = 8;
-  int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int threads = default_threads();
   std::string out = "grainshock-ensemble";
   bool force = false, quiet = false, per_realisation = false;
   ProgressFactory progress;  // the line of the run; none by default

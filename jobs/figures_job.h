@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/ensemble_output.h"
+#include "analysis/ensemble_runner.h"
 #include "jobs/figures_plan.h"
 #include "jobs/progress.h"
 
@@ -24,7 +25,7 @@ struct FiguresOptions {
   int sample = 2;
   std::string out = "grainshock-figures";
   bool force = false, quiet = false;
-  int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int threads = default_threads();
   std::uint64_t seed = 1;
   // Wall minutes between two writes of each running realisation's state beside the case's
   // finished realisations (and one at Ctrl-C), from which `resume` goes on; 0: never.
