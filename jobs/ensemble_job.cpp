@@ -66,7 +66,9 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
                    "grainshock: interrupted before any realisation finished (continue with: "
                    "grainshock resume %s)\n",
                    dir.c_str());
-    return {.interrupted = true};
+    EnsembleResult stopped;
+    stopped.interrupted = true;
+    return stopped;
   }
   const EnsembleTiming timing{wall, threads, ranks.size(), r.sums.count() - r.resumed};
   const EnsembleFits fits = write_ensemble_folder(dir, r.sums, job, timing);
