@@ -102,7 +102,7 @@ void add_render_command(CLI::App& app) {
                 "3D: cut away the half nearer than the plane through the centre facing the camera");
   sub->add_flag("--scale-bar", opt->style.scale_bar,
                 "A scale bar in particle diameters (3D: at the centre's distance)");
-  sub->add_option("--msaa", opt->style.msaa, "3D: samples per pixel (0 for none)")
+  sub->add_option("--msaa", opt->style.msaa, "3D: samples per pixel, 0 (none) to 64")
       ->capture_default_str();
   sub->add_option("--font", opt->style.font, "TrueType font for the annotations")
       ->capture_default_str();
