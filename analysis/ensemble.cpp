@@ -60,17 +60,19 @@ std::vector<double> MeanAccumulator::standard_error() const {
 EnsembleAverage::EnsembleAverage(std::vector<std::string> grid) : grid_request_(std::move(grid)) {}
 
 void EnsembleAverage::check_compatible(const Table& table, const std::string& source) const {
+  // Either of the two may be the one changed: both are named.
   if (table.names != names_)
-    throw UserError(source + ": columns differ from those of the first realisation");
+    throw UserError(source + ": columns differ from those of " + first_ +
+                    " (one of the two is not as written)");
   if (table.rows() != grid_.rows())
-    throw UserError(source + ": " + std::to_string(table.rows()) + " rows, the first realisation " +
+    throw UserError(source + ": " + std::to_string(table.rows()) + " rows, " + first_ + " " +
                     std::to_string(grid_.rows()) + " (time grids must be shared)");
   for (std::size_t j = 0; j < grid_.names.size(); ++j) {
     const auto& a = grid_.columns[j];
     const auto& b = table.column(grid_.names[j]);
     if (std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) != 0)
-      throw UserError(source + ": column '" + grid_.names[j] +
-                      "' differs from the first realisation's (time grids must be shared)");
+      throw UserError(source + ": column '" + grid_.names[j] + "' differs from that of " + first_ +
+                      " (time grids must be shared)");
   }
 }
 
@@ -100,6 +102,7 @@ void EnsembleAverage::add(std::uint64_t realisation, const Table& table,
     grid_ = std::move(grid);
     averaged_ = std::move(averaged);
     acc_ = MeanAccumulator(table.rows() * averaged_.size());
+    first_ = source;
   }
   check_compatible(table, source);
   insert_index(realisation, source);
@@ -153,8 +156,10 @@ void HistogramAverage::add(const Histogram& h, const std::string& source) {
   if (acc_.count() == 0 && edges_.empty()) {
     edges_ = h.edges;
     acc_ = MeanAccumulator(h.values.size());
+    first_ = source;
   } else if (h.edges != edges_) {
-    throw UserError(source + ": histogram bins differ from the first realisation's");
+    throw UserError(source + ": histogram bins differ from those of " + first_ +
+                    " (one of the two is not as written)");
   }
   acc_.add(h.values);
   samples_ += h.samples;
@@ -190,10 +195,10 @@ void ProfileAverage::add(const RadialProfile& p, const std::string& source) {
     speed_.assign(p.count.size(), ExactSum());
     radial_.assign(p.count.size(), ExactSum());
     count_.assign(p.count.size(), 0);
+    first_ = source;
   } else if (p.edges != edges_) {
-    throw UserError(source +
-                    ": profile shells differ from the first realisation's (give a fixed "
-                    "binning for ensembles)");
+    throw UserError(source + ": profile shells differ from those of " + first_ +
+                    " (give a fixed binning for ensembles)");
   }
   density_.add(p.density);
   for (std::size_t b = 0; b < count_.size(); ++b) {

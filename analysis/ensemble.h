@@ -63,6 +63,7 @@ class EnsembleAverage {
   std::vector<std::size_t> averaged_;  // indices into names_ of the averaged columns
   MeanAccumulator acc_;                // row-major: row * averaged_.size() + k
   std::vector<std::uint64_t> indices_;
+  std::string first_;                  // the source of the first realisation, for messages
 };
 
 // The average of histograms with identical edges (P(R,t), P(v,t), packing distributions).
@@ -79,6 +80,7 @@ class HistogramAverage {
   std::vector<double> edges_;
   MeanAccumulator acc_;
   std::uint64_t samples_ = 0, outside_ = 0;
+  std::string first_;  // the source of the first histogram, for messages
 };
 
 // The average of radial profiles with identical shells. Densities are averaged per shell; mean
@@ -98,6 +100,7 @@ class ProfileAverage {
   MeanAccumulator density_;
   std::vector<ExactSum> speed_, radial_;
   std::vector<std::uint64_t> count_;
+  std::string first_;  // the source of the first profile, for messages
 };
 
 }  // namespace gs

@@ -206,8 +206,18 @@ std::vector<std::uint64_t> finished_realisations(const std::filesystem::path& di
   return found;
 }
 
+int default_threads() {
+  return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMaxThreads);
+}
+
+void check_threads(int threads) {
+  if (threads < 1 || threads > kMaxThreads)
+    throw UsageError("--threads " + std::to_string(threads) + ": must be in [1, " +
+                     std::to_string(kMaxThreads) + "]");
+}
+
 RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& o) {
-  if (o.threads < 1) throw UsageError("--threads must be at least 1");
+  check_threads(o.threads);
   Ranks& ranks = o.ranks ? *o.ranks : Ranks::single();
   GS_CHECK(ranks.rank() == 0);
   const auto& dir = o.realisations_dir;

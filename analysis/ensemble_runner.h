@@ -20,6 +20,16 @@
 
 namespace gs {
 
+// The most worker threads a process takes (--threads of ensemble, figures and resume). Each holds
+// an engine of its own and results do not depend on the count, so threads beyond the cores only
+// add memory; 1024 is above the hardware threads of the machines this runs on, and a larger
+// number is a slip of the keyboard, not a plan.
+inline constexpr int kMaxThreads = 1024;
+// The machine's hardware threads, within [1, kMaxThreads]: the default of --threads.
+int default_threads();
+// UsageError naming --threads unless 1 <= threads <= kMaxThreads.
+void check_threads(int threads);
+
 struct RunnerOptions {
   int threads = 1;  // per rank
   // If not empty: each realisation is written to realisations_dir / realisation_folder(k) as it
@@ -55,7 +65,7 @@ inline constexpr const char* kInFlightFolder = "in_flight";
 std::vector<std::uint64_t> finished_realisations(const std::filesystem::path& realisations_dir,
                                                  const EnsembleSpec& spec);
 
-// On rank 0. UserError if threads < 1, for a realisation folder that cannot be read, or when a
+// On rank 0. UsageError for threads outside check_threads', for a realisation folder that cannot be read, or when a
 // realisation fails, naming the rank (with more than one) and the realisation; the realisations
 // finished by then are written already. Ends the job for the other ranks (Ranks::finish).
 RunnerResult run_ensemble(const EnsembleSpec& spec, const RunnerOptions& options);

@@ -22,6 +22,20 @@ void EnsembleSums::add(const Realisation& r, const std::string& source) {
     if (r.snapshots[k].t != snaps_[k].t)
       throw UserError(source + ": snapshot time " + format_number(r.snapshots[k].t) +
                       " is not the ensemble's " + format_number(snaps_[k].t));
+  // Against the spec's own grid first, not only the first realisation read: one edited by hand
+  // is then named itself, not the next one compared with it.
+  const std::vector<double> grid = sample_times(spec_);
+  if (r.timeseries.has("t")) {
+    const std::vector<double>& t = r.timeseries.column("t");
+    if (t.size() != grid.size())
+      throw UserError(source + ": " + std::to_string(t.size()) + " rows, the ensemble's time grid " +
+                      std::to_string(grid.size()));
+    for (std::size_t k = 0; k < t.size(); ++k)
+      if (t[k] != grid[k])
+        throw UserError(source + ": row " + std::to_string(k + 1) + " has t = " +
+                        format_number(t[k]) + ", the ensemble's time grid " +
+                        format_number(grid[k]));
+  }
   Curves c;
   for (std::size_t q = 0; q < kCurveColumns.size(); ++q)
     c[q] = r.timeseries.column(kCurveColumns[q]);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/format.h"
 
 namespace gs::app {
@@ -201,6 +202,69 @@ CLI::Validator whole_number() {
       },
       "", "whole number");
 }
+
+namespace {
+
+std::string quoted(const std::string& text) {
+  return "'" + escaped(text, 40) + "'";
+}
+
+// Why CLI11's conversion of `text` to a number of this kind would not give the number typed,
+// or "" when it would (or when the text is no number at all: CLI11 refuses that itself).
+std::string number_text_problem(const std::string& text, Kind kind, bool is_unsigned) {
+  if (text.empty()) return "an empty value is not a number";
+  const std::size_t first = text.find_first_not_of(" \t");
+  const bool negative = first != std::string::npos && text[first] == '-';
+  char* end = nullptr;
+  errno = 0;
+  if (kind == Kind::Integer) {
+    if (is_unsigned && negative) return quoted(text) + " is negative; it must be 0 or more";
+    if (is_unsigned)
+      (void)std::strtoull(text.c_str(), &end, 0);
+    else
+      (void)std::strtoll(text.c_str(), &end, 0);
+    if (errno == ERANGE && *end == '\0')
+      return quoted(text) + " is out of range (more than 64 bits)";
+    return {};
+  }
+  const double x = std::strtod(text.c_str(), &end);
+  if (errno == ERANGE && *end == '\0' && (std::isinf(x) || x == 0))
+    return quoted(text) + " is out of range (a double holds magnitudes from 5e-324 to 1.8e308)";
+  return {};
+}
+
+// The bound of non_negative() and positive(): refuses numbers below (or at) 0, saying so.
+CLI::Validator lower_bound(bool strict) {
+  return CLI::Validator(
+      [strict](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return {};  // not a number: CLI11 says so
+        if (std::isnan(x)) return text + " is not a number";
+        if (strict ? x > 0 : x >= 0) return {};
+        return text + (strict ? " is not positive" : " is negative; it must be 0 or more");
+      },
+      strict ? "POSITIVE" : "NONNEGATIVE", strict ? "positive" : "non-negative");
+}
+
+}  // namespace
+
+void check_number_text(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* opt : sub->get_options()) {
+      const Kind kind = kind_of(*opt);
+      if (opt->get_expected_max() == 0 || kind == Kind::Text) continue;
+      const bool is_unsigned = opt->get_type_name().rfind("UINT", 0) == 0;
+      opt->check(CLI::Validator(
+          [kind, is_unsigned](std::string& text) {
+            return number_text_problem(text, kind, is_unsigned);
+          },
+          "", "number text"));
+    }
+}
+
+CLI::Validator non_negative() { return lower_bound(false); }
+CLI::Validator positive() { return lower_bound(true); }
 
 CLI::Validator png_name() {
   return CLI::Validator(

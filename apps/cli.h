@@ -40,6 +40,18 @@ bool is_input_files(const CLI::Option& opt);
 // option's integer conversion then sees the digits (so its range checks still apply).
 CLI::Validator whole_number();
 
+// Every number option of every subcommand of `app` (CLI11's INT, UINT and FLOAT): text that
+// CLI11's conversion would turn into another number than the one typed is refused (exit 2,
+// naming the flag and the text): an empty value (read as 0), a negative value of an unsigned
+// option (read as 2^64 - 1), an integer past 64 bits (read as the largest), a decimal beyond a
+// double's range (read as inf, or as 0 for 1e-400). Call once every option exists.
+void check_number_text(CLI::App& app);
+
+// A number's bounds as a check that says them in a few digits (CLI::NonNegativeNumber and
+// PositiveNumber print DBL_MAX in full, 300 digits).
+CLI::Validator non_negative();
+CLI::Validator positive();
+
 // A picture file's name: it must end in .png (any case), since PNG is all that is written, so
 // that --out x.jpg is refused (exit 2, naming the file) instead of given PNG bytes.
 CLI::Validator png_name();

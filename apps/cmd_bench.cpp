@@ -52,6 +52,10 @@ void add_bench_command(CLI::App& app) {
                     c.heavy ? " [heavy]" : "");
       return;
     }
+    // Opened before the first case, so that a place it cannot be written is said at once, not
+    // after minutes of benchmarks.
+    AtomicFileWriter json_file;
+    if (!opt->json.empty()) json_file.open(opt->json);
     Json json = Json::array();
     bool any = false;
     for (const auto& c : cases) {
@@ -86,7 +90,10 @@ void add_bench_command(CLI::App& app) {
       std::fflush(stdout);
     }
     if (!any) throw UserError("bench: no case matches the filter (see --list)");
-    if (!opt->json.empty()) write_file_atomic(opt->json, json_text(json));
+    if (!opt->json.empty()) {
+      json_file.write(json_text(json));
+      json_file.finish();
+    }
   });
 }
 

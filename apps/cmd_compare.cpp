@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "apps/exit_code.h"
 #include "io/atomic_file.h"
+#include "io/mapped_file.h"
 #include "render/image_compare.h"
 #include "render/movie_reader.h"
 #include "render/png.h"
@@ -39,8 +40,7 @@ enum class Kind { Png, Movie };
 
 // Chosen by content: the PNG signature, else whatever libavformat recognises as video.
 Kind kind_of(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) trouble("'" + path + "': no such file");
+  if (const std::string why = not_a_file(path); !why.empty()) trouble("'" + path + "': " + why);
   char sig[8] = {};
   std::ifstream(path, std::ios::binary).read(sig, sizeof sig);
   if (std::string(sig, 8) == "\x89PNG\r\n\x1a\n") return Kind::Png;

@@ -28,7 +28,7 @@ void add_ensemble_command(CLI::App& app) {
       ->transform(whole_number())
       ->capture_default_str();
   sub->add_option("--threads", opt->threads,
-                  "Worker threads K per process (results do not depend on it)")
+                  "Worker threads K per process, 1 to 1024 (results do not depend on it)")
       ->capture_default_str();
   add_output_options(*sub, opt->out, opt->force, opt->quiet);
   sub->add_flag_callback("--no-page", [opt] { opt->page = false; },

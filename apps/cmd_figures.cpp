@@ -25,7 +25,7 @@ struct FiguresFlags {
 
 jobs::FiguresMode mode_of(const FiguresFlags& f) {
   if (int(f.quick) + int(f.full) + int(f.tiny) > 1)
-    throw UserError("figures: give at most one of --quick, --full, --tiny");
+    throw UsageError("--quick, --full and --tiny exclude each other; give at most one");
   return f.full   ? jobs::FiguresMode::Full
          : f.tiny ? jobs::FiguresMode::Tiny
                   : jobs::FiguresMode::Quick;
@@ -62,7 +62,7 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
   add_output_options(sub, o.out, o.force, o.quiet);
   sub.add_flag_callback("--no-page", [&o] { o.page = false; },
                         "Write no report.html beside report.md (the page of `grainshock view`)");
-  sub.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
+  sub.add_option("--threads", o.threads, "Worker threads, 1 to 1024")->capture_default_str();
   sub.add_option("--seed", o.seed, "Master seed of every ensemble")->capture_default_str();
   add_checkpoint_minutes_option(sub, o.checkpoint_minutes);
 }

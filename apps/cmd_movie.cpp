@@ -130,7 +130,7 @@ void add_movie_flags(CLI::App& sub, MovieJob& job) {
                  "Stored snapshots: time step of files that give steps but no time (LAMMPS dumps "
                  "without ITEM: TIME, HOOMD GSD): time = step x DT; without it frames are "
                  "labelled by step")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub.add_flag("--unwrap", job.movie.read.unwrap,
                "Stored LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
                "flags) instead of the positions in the cell, which OVITO draws by default");

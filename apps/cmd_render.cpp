@@ -43,7 +43,7 @@ void add_render_command(CLI::App& app) {
   sub->add_option("--dt", opt->read.dt,
                   "Time step of files that give steps but no time (LAMMPS dumps without ITEM: "
                   "TIME, HOOMD GSD): time = step x DT; without it such frames are labelled by step")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub->add_flag("--unwrap", opt->read.unwrap,
                 "LAMMPS dumps and others' GSD: unwrapped positions (xu, or x plus the image "
                 "flags) instead of the positions in the cell, which OVITO draws by default");
@@ -115,7 +115,7 @@ void add_render_command(CLI::App& app) {
                 "3D: cut away the half nearer than the plane through the centre facing the camera");
   sub->add_flag("--scale-bar", opt->style.scale_bar,
                 "A scale bar in particle diameters (3D: at the centre's distance)");
-  sub->add_option("--msaa", opt->style.msaa, "3D: samples per pixel (0 for none)")
+  sub->add_option("--msaa", opt->style.msaa, "3D: samples per pixel, 0 (none) to 64")
       ->capture_default_str();
   sub->add_option("--font", opt->style.font, "TrueType font for the annotations")
       ->capture_default_str();

@@ -23,7 +23,7 @@ void add_resume_command(CLI::App& app) {
     std::string dir;
     bool quiet = false;
     double checkpoint_every = RunOptions{}.checkpoint_every;
-    int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    int threads = default_threads();
   };
   auto opt = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
@@ -35,7 +35,7 @@ void add_resume_command(CLI::App& app) {
       ->required();
   sub->add_flag("--quiet", opt->quiet, "Nothing on stderr but errors");
   add_checkpoint_option(*sub, opt->checkpoint_every);
-  sub->add_option("--threads", opt->threads, "Ensemble and figures folders: worker threads")
+  sub->add_option("--threads", opt->threads, "Ensemble and figures folders: worker threads, 1 to 1024")
       ->capture_default_str();
   sub->footer(
       "The run goes on from its checkpoint with the settings of DIR/run.toml and ends with the "
@@ -49,6 +49,7 @@ void add_resume_command(CLI::App& app) {
       "unfinished figures folder (with figures.toml) runs only the realisations its "
       "cases have not finished, then the figures and report of a job never stopped.");
   sub->callback([opt] {
+    check_threads(opt->threads);  // a run folder takes no threads, but a wrong number is wrong
     const std::filesystem::path dir(opt->dir);
     if (is_movie_folder(dir)) {
       const int rc = resume_movie(dir, opt->quiet, opt->checkpoint_every);

@@ -16,7 +16,7 @@ void add_checkpoint_option(CLI::App& sub, double& every) {
   sub.add_option("--checkpoint-every", every,
                  "Wall seconds between checkpoints (0: only at the start and on Ctrl-C); "
                  "`grainshock resume DIR` continues from the last")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
 }
 

@@ -5,11 +5,13 @@
 #include <new>
 #include <set>
 
+#include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/completion.h"
 #include "apps/exit_code.h"
 #include "apps/suggest.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/stop.h"
 
 namespace {
@@ -28,7 +30,8 @@ void mark_time_flags(CLI::App& app) {
 
 int fail(int code, const char* what) {
   std::fflush(stdout);
-  std::fprintf(stderr, "grainshock: error: %s\n", what);
+  // Whatever input the message quotes, no byte of it drives the terminal.
+  std::fprintf(stderr, "grainshock: error: %s\n", gs::escaped(what).c_str());
   return code;
 }
 
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
                          "outputs, and no flag takes it.\n\n") +
              kExitCodeHelp);
   mark_time_flags(app);
+  check_number_text(app);
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
     sub->set_version_flag("--version", GRAINSHOCK_VERSION);
     if (sub->get_name() != "compare")

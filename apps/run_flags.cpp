@@ -20,7 +20,7 @@ void add_run_flags(CLI::App& sub, RunOptions& o) {
       ->capture_default_str();
   sub.add_option("--sample-every", o.plan.sample_every,
                  "Also sample every DT (linear grid; 0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   sub.add_option("--snapshot-times", o.plan.snapshot_times, "Write snapshots at these times")
       ->delimiter(',');

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "io/mapped_file.h"
 #include "sim/error.h"
 
 namespace gs {
@@ -216,6 +217,8 @@ void CheckpointWriter::commit() {
 
 CheckpointReader::CheckpointReader(const std::filesystem::path& path) : path_(path) {
   const std::string name = "checkpoint '" + path.string() + "'";
+  if (const std::string why = not_a_file(path); !why.empty())
+    throw UserError("cannot read " + name + ": " + why);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw UserError("cannot read " + name + ": " + os_reason());
   struct stat st {};

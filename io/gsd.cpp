@@ -358,6 +358,9 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
       s.columns.push_back({std::string(name).substr(10), e ? values(*e) : std::vector<double>(n, dflt)});
   }
   if (const Column* id = s.column("typeid")) read_types(k, id->values, s);
+  check_extent(s, file_.path(), k,
+               {"particles/position", "particles/position", "particles/position"},
+               "particles/diameter");
   // Logged per-particle quantities of this frame: ours, then anyone's as extra columns.
   for (auto it = std::lower_bound(index_.begin(), index_.end(), k,
                                   [](const Entry&e, std::uint64_t f) { return e.frame < f; });

@@ -8,6 +8,7 @@
 #include "io/particle_types.h"
 #include "io/text_scan.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/stop.h"
 
 namespace gs {
@@ -151,7 +152,7 @@ DumpSource::DumpSource(MappedFile f) : file_(std::move(f)) {
         fr.end = c.pos();
         break;
       } else {
-        fail(c.line(), "unknown section ITEM: " + std::string(it.substr(0, 40)) +
+        fail(c.line(), "unknown section ITEM: " + escaped(it, 40) +
                            " (only particle dumps, `dump atom` or `dump custom`, are read)");
       }
       if (!c.next(line)) fail(c.line() + 1, "file ends before ITEM: ATOMS of " + frame_name);
@@ -260,6 +261,7 @@ Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
                           image[2] >= 0))
     s.notes.push_back("positions in the cell, as OVITO draws them (--unwrap uses xu or the image "
                       "flags)");
+  static constexpr const char* kAxis[3] = {"x =", "y =", "z ="};
   const std::string_view b = file_.bytes();
   scan_rows(
       b.substr(f.body, f.end - f.body), n, ntok, f.atoms_line + 1, file_.path(),
@@ -300,12 +302,21 @@ Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
         for (int a = 0; a < 3; ++a) {
           if (chosen[a] < 0) continue;
           double& x = s.position[i][a];
+          // As written (folding would hide it) and as placed (a huge box scales it).
+          if (beyond_extent(x)) refuse_extent(file_.path(), k, names[chosen[a]], i, kAxis[a], x);
           if (scaled[a]) x = f.lo[a] + x * edge[a];
           if (form_of[a] >= 2 && has_image) x += img[i][a] * edge[a];
+          if (beyond_extent(x)) refuse_extent(file_.path(), k, names[chosen[a]], i, kAxis[a], x);
           if (fold[a]) x -= edge[a] * std::floor((x - f.lo[a]) / edge[a]);
         }
       },
       true);
+  // The positions were checked row by row, before folding.
+  const int radius_from = radius_col >= 0 ? radius_col : diameter_col;
+  if (has_radius)
+    for (std::size_t i = 0; i < n; ++i)
+      if (beyond_extent(s.radius[i]))
+        refuse_extent(file_.path(), k, names[radius_from], i, "radius", s.radius[i]);
   // LAMMPS types are numbers; they name the particle types (what OVITO colours by).
   if (const Column* t = s.column("type")) assign_types(s, t->values);
   return s;

@@ -21,13 +21,29 @@ struct MappedFile::Mapping {
   }
 };
 
+std::string not_a_file(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  switch (fs::status(path, ec).type()) {
+    case fs::file_type::regular: return {};
+    case fs::file_type::not_found: return "no such file";
+    case fs::file_type::directory: return "is a directory";
+    case fs::file_type::fifo: return "is a pipe (not a regular file)";
+    case fs::file_type::socket: return "is a socket (not a regular file)";
+    case fs::file_type::block:
+    case fs::file_type::character: return "is a device (not a regular file)";
+    default: return ec ? ec.message() : "is not a regular file";
+  }
+}
+
 MappedFile MappedFile::open(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a pipe would otherwise wait for a writer before it could be refused.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw UserError("cannot open snapshot '" + path + "': " + std::strerror(errno));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw UserError("snapshot '" + path + "' is not a regular file");
+    throw UserError("snapshot '" + path + "' " + not_a_file(path));
   }
   auto m = std::make_shared<Mapping>();
   m->length = static_cast<std::size_t>(st.st_size);

@@ -4,11 +4,16 @@
 // the pages are the kernel's page cache, not this process's heap. As with any mapping, a file cut
 // short in place while it is read ends the process with SIGBUS. A file that grows (LAMMPS and
 // gsd append frames) or is replaced by a rename (as the writers here do) is read safely.
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
 
 namespace gs {
+
+// Why `path` cannot be read as a file, for a message: "no such file", "is a directory", "is a
+// pipe (not a regular file)", ...; empty for a regular file (symbolic links followed).
+std::string not_a_file(const std::filesystem::path& path);
 
 class MappedFile {
  public:

@@ -9,6 +9,7 @@
 #include "io/text_scan.h"
 #include "io/xyz.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/format.h"
 
 namespace gs {
@@ -40,6 +41,27 @@ std::size_t SnapshotFile::frame_index(long long k) const {
                      std::to_string(n - 1) + ", or -" + std::to_string(n) +
                      " to -1 from the end)");
   return static_cast<std::size_t>(at);
+}
+
+void refuse_extent(const std::string& path, std::size_t frame, std::string_view column,
+                   std::size_t particle, std::string_view what, double value) {
+  throw UserError("snapshot '" + path + "' frame " + std::to_string(frame) + ", column '" +
+                  std::string(column) + "': particle " + std::to_string(particle) + " has " +
+                  std::string(what) + " " + format_number(value) + ", beyond " +
+                  format_number(kMaxCoordinate) + " (a corrupt file or another length unit)");
+}
+
+void check_extent(const Snapshot& s, const std::string& path, std::size_t frame,
+                  const std::array<std::string, 3>& position_columns,
+                  const std::string& radius_column) {
+  static constexpr const char* kAxis[3] = {"x =", "y =", "z ="};
+  for (std::size_t i = 0; i < s.position.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      if (beyond_extent(s.position[i][a]))
+        refuse_extent(path, frame, position_columns[a], i, kAxis[a], s.position[i][a]);
+  if (!radius_column.empty())
+    for (std::size_t i = 0; i < s.radius.size(); ++i)
+      if (beyond_extent(s.radius[i])) refuse_extent(path, frame, radius_column, i, "radius", s.radius[i]);
 }
 
 void finish_snapshot(Snapshot& s, const ReadOptions& options, const std::string& where) {
@@ -105,9 +127,8 @@ std::unique_ptr<FrameSource> open_source(MappedFile file) {
   std::uint64_t count = 0;
   const std::string_view tok = next_token(first, t);
   if (!parse_integer(tok, count) || !is_blank(first.substr(t))) {
-    if (first.size() > 60) first = first.substr(0, 60);
     throw_at_line(file.path(), std::count(b.begin(), b.begin() + i, '\n') + 1,
-                  "'" + std::string(first) +
+                  "'" + escaped(first, 60) +
                       "' is not a particle count alone on the line (extended XYZ) nor an ITEM: "
                       "line (LAMMPS dump), and the file is not GSD");
   }

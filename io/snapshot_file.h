@@ -14,8 +14,11 @@
 // dimensions, 2-component positions, pbc "T T F" with a zero third lattice vector), else 2 when
 // every z and z-velocity is exactly 0, else 3; ReadOptions::dim overrides (dropping the
 // components beyond it). Bad input throws UserError naming the file and the line or frame.
+#include <array>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "io/mapped_file.h"
 #include "sim/snapshot.h"
@@ -69,6 +72,28 @@ SnapshotFile open_snapshots(MappedFile file, const ReadOptions& options = {});
 // of one snapshot.
 Snapshot read_snapshot(const std::string& path, const ReadOptions& options = {},
                        long long frame = 0);
+
+// The largest |coordinate| and radius a frame may hold, in the file's length unit. Pictures place
+// particles in float relative to the camera and their shaders square distances and radii (times a
+// view scale of up to ~1e4 pixels per unit), which overflows float's 3.4e38 near 1e17; and a
+// frame spanning more than 2^24 radii cannot be drawn in float at all. 1e12 leaves room for both
+// and is far beyond any system in these units (our largest grid spans 32766 diameters, a
+// million-atom LAMMPS box in angstrom about 1e3): a value above it is a corrupt file or a wrong
+// unit, and was drawn as an empty picture.
+inline constexpr double kMaxCoordinate = 1e12;
+
+inline bool beyond_extent(double x) { return !(std::fabs(x) <= kMaxCoordinate); }
+// The UserError for a value beyond it, naming the file, the frame, the column and the particle;
+// `what` says which value ("x =", "radius").
+[[noreturn]] void refuse_extent(const std::string& path, std::size_t frame,
+                                std::string_view column, std::size_t particle,
+                                std::string_view what, double value);
+// refuse_extent unless every position of `s` is within +-kMaxCoordinate and every radius below
+// it: `position_columns[a]` is the file's name for axis a, `radius_column` for the radii (empty
+// when the file gives none). Every reader calls it on the frame it has read.
+void check_extent(const Snapshot& s, const std::string& path, std::size_t frame,
+                  const std::array<std::string, 3>& position_columns,
+                  const std::string& radius_column);
 
 // What every reader does last: applies the dimension (stated, overridden or inferred), zeroes
 // what lies beyond it, fills the defaults and checks the sizes. Exposed for the tests.

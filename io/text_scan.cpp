@@ -1,6 +1,7 @@
 #include "io/text_scan.h"
 
 #include "sim/error.h"
+#include "sim/escaped.h"
 
 namespace gs {
 
@@ -18,8 +19,8 @@ void throw_not_finite(const std::string& path, std::size_t line, std::string_vie
 // Appending instead of chaining operator+ avoids GCC 12's false -Wrestrict on short literals.
 std::string not_a(std::string_view tok, std::string_view kind, std::string_view name) {
   std::string m = "'";
-  if (tok.size() > 40) tok = tok.substr(0, 40);  // a hostile token must not flood the terminal
-  m.append(tok).append("' is not ").append(kind).append(" (").append(name).append(")");
+  // A hostile token must neither flood nor drive the terminal.
+  m.append(escaped(tok, 40)).append("' is not ").append(kind).append(" (").append(name).append(")");
   return m;
 }
 

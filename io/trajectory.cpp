@@ -10,7 +10,7 @@ SnapshotFormat trajectory_format(const std::string& name) {
   auto ends = [&](std::string_view e) { return name.size() > e.size() && name.ends_with(e); };
   if (ends(".gsd")) return SnapshotFormat::Gsd;
   if (ends(".xyz") || ends(".extxyz")) return SnapshotFormat::Xyz;
-  throw UserError("--trajectory '" + name +
+  throw UsageError("--trajectory '" + name +
                   "' must end in .gsd or .xyz (the format it is written in)");
 }
 

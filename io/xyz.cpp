@@ -40,6 +40,7 @@ struct Layout {
   std::vector<Slot> slots;
   std::vector<std::string> extra;  // names of the extra columns, in slot order
   int pos_count = 0;
+  std::string pos_name, radius_name;  // as the file spells them, for messages
   int z_column = -1;  // the extra column holding ASE's atomic numbers Z, if any
   bool has_species = false;
   bool has_vel = false, has_mom = false, has_mass = false, has_radius = false, has_active = false,
@@ -267,6 +268,7 @@ Layout XyzSource::parse_properties(const std::string& properties, std::size_t li
     if (iequals(name, "pos") || iequals(name, "positions")) {
       need(t == 'R' && count <= 3 && l.pos_count == 0, "R:1, R:2 or R:3 and given once");
       l.pos_count = static_cast<int>(count);
+      l.pos_name = std::string(name);
       add(Slot::Pos);
     } else if (!l.has_vel &&
                (iequals(name, "velo") || iequals(name, "vel") || iequals(name, "velocities"))) {
@@ -284,6 +286,7 @@ Layout XyzSource::parse_properties(const std::string& properties, std::size_t li
     } else if (!l.has_radius && (iequals(name, "radius") || iequals(name, "radii"))) {
       need(t == 'R' && count == 1, "R:1");
       l.has_radius = true;
+      l.radius_name = std::string(name);
       add(Slot::Radius);
     } else if (!l.has_active && iequals(name, "active")) {
       need((t == 'I' || t == 'L') && count == 1, "I:1 or L:1");
@@ -404,7 +407,9 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   s.info = h.info;
 
   // A line has at most one token per 2 bytes, so a count beyond that cannot be right.
-  const std::size_t max_tokens = std::min<std::size_t>(f.end - f.body + 1, std::size_t{1} << 24);
+  // A frame of no particles has no lines to bound its columns by.
+  const std::size_t max_tokens = std::min<std::size_t>(
+      f.n == 0 ? std::size_t{1} << 24 : f.end - f.body + 1, std::size_t{1} << 24);
   const Layout l = parse_properties(h.properties, comment_line, max_tokens);
   for (const std::string& name : l.extra) s.columns.push_back({name, {}});
   const bool zero_third = h.lattice ? apply_lattice(h, s.info, comment_line) : true;
@@ -517,6 +522,7 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
   if (!species.empty() &&
       std::any_of(species.begin(), species.end(), [](std::string_view v) { return v != "X"; }))
     assign_types(s, species);
+  check_extent(s, file_.path(), k, {l.pos_name, l.pos_name, l.pos_name}, l.radius_name);
   return s;
 }
 

@@ -64,9 +64,18 @@ EnsembleResult run_job(const fs::path& dir, const EnsembleJob& job, int threads,
   RunnerResult r = run_ensemble(job.spec, ro);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   progress.done();
-  if (r.sums.count() == 0)
-    throw UserError("interrupted before any realisation finished (resume with: grainshock resume " +
-                    dir.string() + ")");
+  if (r.sums.count() == 0) {
+    // Stopped before a realisation finished: nothing to average yet, but a stop all the same
+    // (exit 130); the folder resumes from the states in flight.
+    GS_CHECK(r.interrupted);
+    if (!quiet)
+      tell(messages, MessageKind::Note,
+           "interrupted before any realisation finished (continue with: grainshock resume " +
+               dir.string() + ")");
+    EnsembleResult stopped;
+    stopped.interrupted = true;
+    return stopped;
+  }
   const EnsembleTiming timing{wall, threads, ranks.size(), r.sums.count() - r.resumed};
   const EnsembleFits fits = write_ensemble_folder(dir, r.sums, job, timing);
   if (!r.interrupted && !job.keep_realisations) {
@@ -116,7 +125,7 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   if (ranks.rank() != 0) return served(ranks);
   // Every check before the output folder is touched: bad input leaves nothing behind.
   if (o.realisations < 1) throw UsageError("--realisations must be at least 1");
-  if (o.threads < 1) throw UsageError("--threads must be at least 1");
+  check_threads(o.threads);
   EnsembleJob job;
   job.spec.physics = o.physics;
   job.spec.realisations = static_cast<std::uint64_t>(o.realisations);
@@ -167,7 +176,7 @@ EnsembleResult resume_ensemble(const fs::path& dir, int threads, bool quiet,
                                const ProgressFactory& progress, const MessageSink& messages) {
   Ranks& ranks = Ranks::world();
   if (ranks.rank() != 0) return served(ranks);
-  if (threads < 1) throw UsageError("--threads must be at least 1");
+  check_threads(threads);
   std::error_code ec;
   if (!fs::is_regular_file(dir / "ensemble.toml", ec))
     throw UserError(dir.string() + ": not an ensemble folder (no ensemble.toml)");

@@ -10,6 +10,7 @@
 
 #include "analysis/ensemble_fits.h"
 #include "analysis/ensemble_output.h"
+#include "analysis/ensemble_runner.h"
 #include "analysis/ensemble_sums.h"
 #include "jobs/progress.h"
 #include "sim/config.h"
@@ -20,7 +21,7 @@ namespace gs::jobs {
 struct EnsembleOptions {
   PhysicsConfig physics;
   long long realisations = 8;
-  int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int threads = default_threads();
   std::string out = "grainshock-ensemble";
   bool force = false, quiet = false, per_realisation = false;
   bool page = true;  // DIR/index.html, the page of `grainshock view`

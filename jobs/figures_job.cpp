@@ -8,6 +8,7 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "analysis/ensemble_output.h"
 #include "analysis/ensemble_runner.h"
@@ -83,6 +84,20 @@ fs::path realisations_dir(const fs::path& dir, const FigureCase& c) {
 }
 constexpr const char* kCaseSpecFile = "case.toml";
 
+// The first line where two texts differ, in each ("" past its end).
+std::pair<std::string, std::string> first_different_lines(const std::string& a,
+                                                          const std::string& b) {
+  std::istringstream ia(a), ib(b);
+  std::string la, lb;
+  while (true) {
+    const bool more_a = static_cast<bool>(std::getline(ia, la));
+    const bool more_b = static_cast<bool>(std::getline(ib, lb));
+    if (!more_a) la.clear();
+    if (!more_b) lb.clear();
+    if (la != lb || (!more_a && !more_b)) return {la, lb};
+  }
+}
+
 // Makes case `c`'s realisations folder, or checks that the one a stopped job left holds
 // realisations of the same ensemble: another version may plan the case otherwise.
 fs::path case_realisations(const fs::path& dir, const FigureCase& c) {
@@ -93,9 +108,13 @@ fs::path case_realisations(const fs::path& dir, const FigureCase& c) {
     std::ifstream in(rdir / kCaseSpecFile);
     std::stringstream held;
     held << in.rdbuf();
-    if (held.str() != spec)
-      throw UserError(rdir.string() + ": holds realisations of another plan of case " + c.name +
-                      " (from another version of grainshock): start again with --force");
+    if (held.str() != spec) {
+      // Most often figures.toml edited since (a seed, a size), else another version's plan.
+      const auto [was, now] = first_different_lines(held.str(), spec);
+      throw UserError(rdir.string() + ": holds realisations of case " + c.name + " planned with '" +
+                      was + "', but the folder's settings (figures.toml) now plan '" + now +
+                      "': restore them, or start again with --force");
+    }
     return rdir;
   }
   fs::create_directories(rdir, ec);
@@ -327,7 +346,7 @@ constexpr const char* kEstimateReplaced[] = {"estimate_sample"};
 }  // namespace
 
 FiguresResult run_figures_job(const FiguresOptions& o) {
-  if (o.threads < 1) throw UsageError("--threads must be at least 1");
+  check_threads(o.threads);
   if (o.sample < 1) throw UsageError("--sample must be at least 1");
   checked_checkpoint_minutes(o.checkpoint_minutes);
   if (o.limit_dim != 0 && o.limit_dim != 2 && o.limit_dim != 3)

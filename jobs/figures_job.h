@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/ensemble_output.h"
+#include "analysis/ensemble_runner.h"
 #include "jobs/figures_plan.h"
 #include "jobs/progress.h"
 #include "sim/messages.h"
@@ -26,7 +27,7 @@ struct FiguresOptions {
   std::string out = "grainshock-figures";
   bool force = false, quiet = false;
   bool page = true;  // report.html beside report.md, the page of `grainshock view`
-  int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int threads = default_threads();
   std::uint64_t seed = 1;
   // Wall minutes between two writes of each running realisation's state beside the case's
   // finished realisations (and one at Ctrl-C), from which `resume` goes on; 0: never.

@@ -170,12 +170,19 @@ std::optional<Snapshot> run_elastic_comparison(const RunOptions& o,
     std::snprintf(line, sizeof line, "elastic comparison (r = 1) to t = %g", c.t_max);
     tell(o.messages, MessageKind::Note, line);
   }
-  auto sim = make_simulation(c);
-  while (sim->time() < c.t_max) {
-    sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
-    if (stop_requested() || abandoned) return std::nullopt;
+  try {
+    auto sim = make_simulation(c);
+    while (sim->time() < c.t_max) {
+      sim->run_until(std::min(c.t_max, sim->time() + std::max(1.0, 0.01 * sim->time())));
+      if (stop_requested() || abandoned) return std::nullopt;
+    }
+    return sim->snapshot();
+  } catch (const UserError& e) {
+    // Its own failure, not the main run's: an elastic front outruns the inelastic one and may
+    // need more of the unbounded medium's --particles.
+    throw UserError("the elastic comparison of --compare-elastic (r = 1, to t = " +
+                    format_number(c.t_max) + "): " + e.what());
   }
-  return sim->snapshot();
 }
 
 void write_elastic_comparison(const fs::path& dir, const RunOptions& o, const Snapshot& s) {
@@ -272,7 +279,10 @@ namespace {
 FrontMovieOptions check_run(const RunOptions& o) {
   check_plan(o.plan, o.png ? static_cast<int>(snapshot_times(o.plan).size()) : 1);
   if (!o.trajectory.empty() && snapshot_times(o.plan).empty())
-    throw UserError("--trajectory '" + o.trajectory + "' needs snapshot times (--snapshot-times)");
+    throw UsageError("--trajectory '" + o.trajectory +
+                     "' needs snapshot times (--snapshot-times)");
+  if (o.movie_inset && !o.movie)
+    throw UsageError("--movie-inset draws the inset in the movie of --movie; give both or neither");
   if (o.png || o.compare_elastic) render::check_size(o.width, o.height);
   FrontMovieOptions movie;
   movie.quiet = o.quiet;

@@ -23,7 +23,7 @@ Colormap Colormap::by_name(const std::string& name) {
   if (name == "grey" || name == "gray") return {"grey", nullptr};
   std::string list;
   for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
-  throw UserError("unknown colormap '" + name + "' (use one of " + list + ")");
+  throw UsageError("unknown --colormap '" + name + "' (use one of " + list + ")");
 }
 
 std::array<float, 3> Colormap::at(double t) const {

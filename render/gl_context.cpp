@@ -10,7 +10,7 @@ Backend parse_backend(const std::string& name) {
   if (name == "auto") return Backend::Auto;
   if (name == "osmesa") return Backend::OSMesa;
   if (name == "egl") return Backend::EGL;
-  throw UserError("unknown GL backend '" + name + "' (use auto, osmesa or egl)");
+  throw UsageError("unknown --gl '" + name + "' (use auto, osmesa or egl)");
 }
 
 std::unique_ptr<GLContext> GLContext::create(Backend backend) {

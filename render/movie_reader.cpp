@@ -42,6 +42,11 @@ MovieReader::MovieReader(const std::filesystem::path& path)
   info_.codec_id = par->codec_id;
   info_.width = par->width;
   info_.height = par->height;
+  // libavformat takes any file named .png or .jpg for a one-picture "movie" by its name alone; a
+  // text file so named has a stream of no size.
+  if (info_.width <= 0 || info_.height <= 0)
+    throw UserError("movie '" + path.string() + "': its video stream has no picture size " +
+                    "(libavformat read it as " + av_->fmt->iformat->name + ")");
   info_.avg_rate_num = st->avg_frame_rate.num, info_.avg_rate_den = st->avg_frame_rate.den;
   info_.r_rate_num = st->r_frame_rate.num, info_.r_rate_den = st->r_frame_rate.den;
   if (av_->fmt->duration != AV_NOPTS_VALUE)

@@ -59,18 +59,19 @@ const AVCodec* find_encoder(const std::string& name) {
 
 }  // namespace
 
+// Each of these is a flag's value (movie's and run's), so a usage error that names the flag.
 void check_movie_options(const MovieOptions& o) {
   if (o.codec != "h264" && o.codec != "libx264" && o.codec != "mpeg4")
-    throw UserError("unknown codec '" + o.codec + "' (use h264, libx264 or mpeg4)");
+    throw UsageError("unknown --codec '" + o.codec + "' (use h264, libx264 or mpeg4)");
   if (o.width <= 0 || o.height <= 0)
-    throw UserError("movie frame size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                    " must be positive");
+    throw UsageError("movie frame size " + std::to_string(o.width) + "x" +
+                     std::to_string(o.height) + " (--width, --height) must be positive");
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 1000)
-    throw UserError("movie fps must be in (0, 1000], got " + shortest(o.fps));
+    throw UsageError("--fps " + shortest(o.fps) + ": must be in (0, 1000]");
   if (o.crf < 0 || o.crf > 51)
-    throw UserError("movie crf must be in 0..51, got " + std::to_string(o.crf));
+    throw UsageError("--crf " + std::to_string(o.crf) + ": must be in 0..51");
   if (o.keyint < 1 || o.keyint > 100000)
-    throw UserError("movie keyint must be in 1..100000, got " + std::to_string(o.keyint));
+    throw UsageError("--keyint " + std::to_string(o.keyint) + ": must be in 1..100000");
   if (o.queue_frames < 1) throw UserError("movie queue_frames must be >= 1");
 }
 

@@ -90,21 +90,31 @@ Rgb8 overlay_colour(std::size_t index) {
   return k[index % std::size(k)];
 }
 
+// The style's settings are the flags of render and movie (Python's keywords): a value outside what
+// one accepts, or two that exclude each other, is a usage error naming the flags.
 void check_style(const Style& style) {
   Colormap::by_name(style.colormap);
   if (style.range) {
     const auto [lo, hi] = *style.range;
     if (!std::isfinite(lo) || !std::isfinite(hi) || lo >= hi)
-      throw UserError("colour range MIN " + fmt("%g", lo) + " must be below MAX " + fmt("%g", hi));
+      throw UsageError("--range " + fmt("%g", lo) + " " + fmt("%g", hi) +
+                       ": MIN must be below MAX");
     if (style.scale == Scale::Log && lo <= 0)
-      throw UserError("a logarithmic colour range needs MIN > 0 (got " + fmt("%g", lo) + ")");
+      throw UsageError("--range with --scale log needs MIN > 0 (got " + fmt("%g", lo) + ")");
   }
   if (style.scale == Scale::Log &&
       (style.field == Field::RadialVelocity || style.field == Field::ScaledRadialVelocity))
-    throw UserError("radial velocity takes both signs; it cannot be coloured on a log scale");
+    throw UsageError("--scale log: radial velocity takes both signs; it cannot be coloured on a "
+                     "log scale");
   if (!(style.percentile_low >= 0 && style.percentile_low < style.percentile_high &&
         style.percentile_high <= 100))
-    throw UserError("colour percentiles must satisfy 0 <= low < high <= 100");
+    throw UsageError("--percentiles " + fmt("%g", style.percentile_low) + " " +
+                     fmt("%g", style.percentile_high) + ": must satisfy 0 <= LOW < HIGH <= 100");
+  // 64 is above every GL driver's largest sample count (the renderer takes the driver's largest
+  // below it): a larger or negative number is a typing error, not a wish for more quality.
+  if (style.msaa < 0 || style.msaa > kMaxMsaa)
+    throw UsageError("--msaa " + std::to_string(style.msaa) + ": must be in [0, " +
+                     std::to_string(kMaxMsaa) + "] samples per pixel");
 }
 
 namespace {

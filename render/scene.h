@@ -84,7 +84,7 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
 // The colour of each snapshot in the multi-time overlay, and of each particle type (Okabe-Ito,
 // safe for colour blindness; it repeats after 7).
 Rgb8 overlay_colour(std::size_t index);
-// Throws UserError unless the style's words and range make sense.
+// Throws UsageError, naming the flag, unless the style's words and ranges make sense.
 void check_style(const Style& style);
 
 }  // namespace gs::render

@@ -40,13 +40,13 @@ Field parse_field(const std::string& name) {
     if (name == field_name(f)) return f;
     list += (list.empty() ? "" : ", ") + std::string(field_name(f));
   }
-  throw UserError("unknown colour field '" + name + "' (use " + list + ")");
+  throw UsageError("unknown --color-by '" + name + "' (use " + list + ")");
 }
 
 Background parse_background(const std::string& name) {
   if (name == "light") return Background::Light;
   if (name == "dark") return Background::Dark;
-  throw UserError("unknown background '" + name + "' (use light or dark)");
+  throw UsageError("unknown --background '" + name + "' (use light or dark)");
 }
 
 const char* field_label(Field f) {

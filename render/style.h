@@ -27,6 +27,9 @@ enum class Field {
 enum class Scale { Linear, Log };
 enum class Background { Light, Dark };
 
+// The most samples per pixel --msaa takes (check_style).
+inline constexpr int kMaxMsaa = 64;
+
 struct Style {
   // Magma on white, without its cream end (Colormap::against): black to light orange all
   // stand out from the background, and its colours differ in lightness, which a movie's 4:2:0

@@ -341,6 +341,52 @@ TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   expect_same_files(whole, stopped);
 }
 
+// Stopped before any realisation finished is a stop like any other, exit 130 with the folder to
+// continue (it exited 1, as a failure).
+TEST(CliEnsemble, InterruptedBeforeTheFirstRealisationExits130) {
+  const auto dir = scratch_dir("early");
+  const fs::path err = dir.string() + ".err";
+  const pid_t pid = spawn_grainshock("ensemble --dim 3 --medium box --particles 20000 --t-max 1e7 "
+                                     "--realisations 2 --threads 1 --out " + dir.string(),
+                                     err.string());
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir / "realisations") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(finished_count(dir / "realisations"), 0u) << "a realisation finished: make it slower";
+  EXPECT_EQ(WEXITSTATUS(status), 130) << read_file(err);
+  EXPECT_NE(read_file(err).find("interrupted before any realisation finished (continue with: "
+                                "grainshock resume " + dir.string() + ")"),
+            std::string::npos)
+      << read_file(err);
+}
+
+// A realisation changed by hand is named itself: checked against the ensemble's own time grid,
+// realisation 0 edited was blamed on realisation 1, the first compared with it.
+TEST(CliEnsemble, AnEditedRealisationIsNamedItself) {
+  const auto dir = scratch_dir("edited");
+  const std::string job = "ensemble " + kPhysics + " --realisations 3 --per-realisation --out ";
+  ASSERT_EQ(grainshock(job + dir.string()).exit_code, 0);
+  fs::remove(dir / "summary.json");
+  fs::remove_all(dir / "realisations/000002");
+  const fs::path csv = dir / "realisations/000000/timeseries.csv";
+  std::string text = read_file(csv);
+  const std::size_t row2 = text.find('\n', text.find('\n') + 1) + 1;  // the header, row 1
+  text.replace(row2, text.find(',', row2) - row2, "0.125");
+  std::ofstream(csv, std::ios::binary) << text;
+  const auto r = grainshock(job + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("realisations/000000: row 2 has t = 0.125, the ensemble's time grid "),
+            std::string::npos)
+      << r.err;
+}
+
 // A folder killed before realisations 1 and 2 finished, with a file in the way of 2's folder (it
 // cannot be written); `prefix` runs the command (mpirun for several ranks).
 test::CommandResult resume_with_realisation_2_blocked(const fs::path& dir,

@@ -2,12 +2,16 @@
 // written and summary.json carries the comparisons other tools read. The numbers of a tiny run
 // are not physics; their values are not tested here.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <set>
+#include <thread>
 
 #include "analysis/json.h"
 #include "analysis/table.h"
@@ -225,6 +229,37 @@ TEST(CliFigures, EstimateTimesEveryStageOfTheJob) {
     EXPECT_NE(md.find(q), std::string::npos) << q;
   EXPECT_FALSE(fs::exists(dir / "estimate_sample"));
   EXPECT_FALSE(fs::exists(dir / "report.md"));
+}
+
+// A killed job whose figures.toml was edited since (here its seed) is refused naming the setting
+// that changed, not blamed on "another version of grainshock".
+TEST(CliFigures, AnEditedSettingOfAnUnfinishedJobIsNamed) {
+  const auto dir = scratch_dir("edited");
+  const pid_t pid = test::spawn_grainshock("figures --tiny --threads 1 --out " + dir.string());
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  auto started = [&] {
+    std::error_code ec;
+    for (const auto& e : fs::recursive_directory_iterator(dir / "ensembles", ec))
+      if (e.path().filename() == "case.toml") return true;
+    return false;
+  };
+  while (!started() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_FALSE(fs::exists(dir / "report.md")) << "the job finished before the kill";
+  std::string settings = read_file(dir / "figures.toml");
+  const auto at = settings.find("\nseed = ");
+  ASSERT_NE(at, std::string::npos) << settings;
+  settings.replace(at, settings.find('\n', at + 1) - at, "\nseed = 4242");
+  std::ofstream(dir / "figures.toml") << settings;
+  const auto r = grainshock("resume --quiet " + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("now plan 'seed = 4242'"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("another version"), std::string::npos) << r.err;
 }
 
 TEST(CliFigures, BadInputIsRefusedInOneLine) {

@@ -2,6 +2,7 @@
 // unknown words named with a suggestion, --version everywhere, and the bash completion script.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -193,6 +194,180 @@ TEST(CliUsage, OutOfRangeValuesExitTwoInEverySubcommand) {
   for (const char* out : {"r1", "r2", "r3", "r4", "e1", "e2", "e3", "e4", "e5", "m1", "m2", "m3",
                           "m4", "f1", "f2", "f3", "g1", "a.png", "a.jpg"})
     EXPECT_FALSE(fs::exists(dir / out)) << out;
+}
+
+// Values the jobs and the renderer check after CLI11 (words, ranges, flags that exclude or need
+// each other) are usage errors too: exit 2 with one line naming the flag, nothing written. Each
+// row was accepted (exit 0) or exited 1 before.
+TEST(CliUsage, ValuesCheckedPastTheParserExitTwoNamingTheFlag) {
+  const fs::path dir = scratch_dir("past_parser");
+  const std::string small = "--dim 2 --medium box --particles 200 --t-max 20 --quiet";
+  const auto made = grainshock("run " + small + " --out " + (dir / "ok").string());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string snap = (dir / "ok" / "snapshots" / "tsim_20.xyz").string();
+  const std::string movie = "movie " + small + " --out " + (dir / "m").string() + " ";
+  const std::string render = "render " + snap + " --out " + (dir / "r.png").string() + " ";
+  const std::string figures = "figures --out " + (dir / "f").string() + " ";
+  const std::string run = "run " + small + " --out " + (dir / "run").string() + " ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {movie + "--fps 0", "--fps"},
+      {movie + "--fps nan", "--fps"},
+      {movie + "--crf 99", "--crf"},
+      {movie + "--codec vp9", "--codec"},
+      {movie + "--color-by temperature", "--color-by"},
+      {movie + "--colormap jet", "--colormap"},
+      {movie + "--background blue", "--background"},
+      {movie + "--gl vulkan", "--gl"},
+      {movie + "--range 5 1", "--range"},
+      {render + "--colormap jet", "--colormap"},
+      {render + "--background blue", "--background"},
+      {render + "--gl vulkan", "--gl"},
+      {render + "--range 5 1", "--range"},
+      {render + "--percentiles 99 1", "--percentiles"},
+      {render + "--msaa -5", "--msaa"},
+      {render + "--msaa 100000", "--msaa"},
+      {figures + "--quick --full", "--full"},
+      {figures + "--tiny --full", "--tiny"},
+      {run + "--snapshot-times 10 --trajectory foo.txt", "--trajectory"},
+      {run + "--movie-inset", "--movie-inset"},
+      {"resume " + (dir / "ok").string() + " --threads 0", "--threads"},
+      {"ensemble --threads 100000 --realisations 1 --out " + (dir / "e").string(), "--threads"},
+  };
+  for (const auto& [args, named] : cases) {
+    const auto r = grainshock(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
+  }
+  for (const char* out : {"m", "r.png", "f", "run", "e"}) EXPECT_FALSE(fs::exists(dir / out)) << out;
+}
+
+// A number is refused as typed, not as CLI11's conversion turned it: "" was reported as 0, -1 and
+// a 23-digit seed as 18446744073709551615, 1e400 as "inf: must be positive"; and a bound is said
+// in a few digits (CLI11's own printed DBL_MAX in full, 300 of them).
+TEST(CliUsage, NumbersAreRefusedAsTyped) {
+  const fs::path dir = scratch_dir("typed");
+  const std::string run = "run --dim 2 --medium box --t-max 20 --quiet --out " +
+                          (dir / "r").string() + " ";
+  struct Case {
+    std::string args, says, not_says;
+  };
+  const std::vector<Case> cases = {
+      {run + "--particles ''", "--particles: an empty value is not a number", ": 0"},
+      {run + "--seed -1", "--seed: '-1' is negative", "18446744073709551615"},
+      {run + "--seed 12345678901234567890123",
+       "--seed: '12345678901234567890123' is out of range", "18446744073709551615"},
+      {run + "--t-max 1e400", "--t-max: '1e400' is out of range", "inf"},
+      {run + "--density 1e-400", "--density: '1e-400' is out of range", "--density 0"},
+      {run + "--sample-every -1", "--sample-every: -1 is negative", "1797693"},
+      {"resume --checkpoint-every -1 " + dir.string(), "--checkpoint-every: -1 is negative",
+       "1797693"},
+      {"render --dt -1 x.xyz --out " + (dir / "a.png").string(), "--dt: -1 is not positive",
+       "1797693"},
+  };
+  for (const Case& c : cases) {
+    const auto r = grainshock(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err.find(c.not_says), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_LT(r.err.size(), 200u) << c.args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "r"));
+  // What the conversion reads rightly still passes: a count in physicists' notation, a hex seed.
+  const auto ok = grainshock(run + "--particles 2e2 --seed 0x10");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
+// A garbage snapshot's bytes are quoted escaped: an ESC from the file must not reach the terminal.
+TEST(CliUsage, GarbageIsQuotedEscaped) {
+  const fs::path dir = scratch_dir("garbage");
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.xyz", std::ios::binary) << "\x1b[31mred\x1b[0m\x07 \xff\n2\n";
+  const auto r = grainshock("render " + (dir / "bad.xyz").string() + " --out " +
+                            (dir / "bad.png").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\x07'), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'\\x1B[31mred\\x1B[0m\\x07 \\xFF' is not a particle count"),
+            std::string::npos)
+      << r.err;
+}
+
+// Files that are not what a command needs are named for what they are: a directory or a pipe
+// was "no such file", a text file named .png "a movie", a checkpoint that is a directory
+// "truncated".
+TEST(CliUsage, WrongKindsOfFilesAreNamedForWhatTheyAre) {
+  const fs::path dir = scratch_dir("kinds");
+  const auto made = grainshock("run --dim 2 --medium box --particles 200 --t-max 20 --quiet "
+                               "--png --width 64 --height 48 --out " + (dir / "ok").string());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  std::string png;
+  for (const auto& e : fs::directory_iterator(dir / "ok" / "frames")) png = e.path().string();
+  ASSERT_FALSE(png.empty());
+  std::ofstream(dir / "text.png") << "not a picture\n";
+  fs::create_directories(dir / "folder.png");
+  ASSERT_EQ(::mkfifo((dir / "pipe.png").c_str(), 0600), 0);
+  const std::vector<std::pair<std::string, std::string>> compare = {
+      {"text.png", "text.png' is not a PNG or a movie"},
+      {"folder.png", "folder.png': is a directory"},
+      {"pipe.png", "pipe.png': is a pipe"},
+      {"none.png", "none.png': no such file"},
+  };
+  for (const auto& [name, says] : compare) {
+    const auto r = grainshock("compare " + png + " " + (dir / name).string());
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << name << ": " << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << name << ": " << r.err;
+  }
+  // render of a pipe is refused at once (opening it waited for a writer, for ever: the timeout
+  // turns a relapse into a failure, not a hung test) and names it.
+  const auto p = grainshock("render " + (dir / "pipe.png").string() + " --out " +
+                                (dir / "p.png").string(),
+                            "timeout 60");
+  EXPECT_EQ(p.exit_code, 1) << p.err;
+  EXPECT_NE(p.err.find("pipe.png' is a pipe"), std::string::npos) << p.err;
+
+  // A stopped run whose checkpoint became a directory.
+  const fs::path stopped = dir / "stopped";
+  const pid_t pid = spawn_grainshock(
+      "run --dim 3 --medium box --particles 20000 --t-max 1e7 --quiet --out " + stopped.string());
+  EXPECT_EQ(interrupt_when(pid, stopped / "checkpoint.bin", SIGINT), 130);
+  fs::remove(stopped / "checkpoint.bin");
+  fs::remove(stopped / "checkpoint.prev.bin");
+  fs::create_directories(stopped / "checkpoint.bin");
+  const auto r = grainshock("resume " + stopped.string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("checkpoint.bin': is a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("truncated"), std::string::npos) << r.err;
+}
+
+// A PNG that cannot be written says why, as the OS says it (libpng's own writer said "Write
+// Error" whatever the reason): here a file size limit (ulimit -f, SIGXFSZ ignored).
+TEST(CliUsage, PngWriteErrorsSayTheOsReason) {
+  const fs::path dir = scratch_dir("pngwrite");
+  const auto made = grainshock("run --dim 2 --medium box --particles 200 --t-max 20 --quiet --out " +
+                               (dir / "ok").string());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const auto r = grainshock("render " + (dir / "ok" / "snapshots" / "tsim_20.xyz").string() +
+                                " --out " + (dir / "big.png").string(),
+                            "ulimit -f 8; trap '' XFSZ;");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("big.png': File too large"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "big.png"));
+}
+
+// bench --json into a place it cannot write fails before the first case, not after all of them.
+TEST(CliUsage, BenchJsonIsCheckedBeforeTheCases) {
+  const fs::path dir = scratch_dir("benchjson");
+  const auto r = grainshock("bench sim/ --json " + (dir / "missing" / "b.json").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("No such file or directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "") << "a case ran before the failure";
 }
 
 // Ctrl-C tells the folder to resume, not the placeholder DIR.

@@ -6,8 +6,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
+#include "io/gsd.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
+#include "tests/sim/test_output.h"
 
 namespace gs {
 namespace {
@@ -209,6 +213,74 @@ TEST(SnapshotFile, UnknownContentIsNamed) {
   EXPECT_NE(msg.find("hello world"), std::string::npos) << msg;
   EXPECT_NE(error_of(""), "accepted");
   EXPECT_NE(error_of("\n\n  \n"), "accepted");
+}
+
+// Finite but absurd coordinates and radii (1e300 in text, 3e38 in GSD's floats) were drawn as an
+// empty picture; they are refused naming the file, the frame and the column as the file names
+// it. The bound itself (kMaxCoordinate) is accepted.
+TEST(SnapshotFile, AbsurdCoordinatesAndRadiiAreRefusedNamingFrameAndColumn) {
+  const std::string fine = "1\nProperties=species:S:1:pos:R:3:radius:R:1\nA 1 2 3 0.5\n";
+  auto xyz = [](const std::string& row) {
+    return "1\nProperties=species:S:1:pos:R:3:radius:R:1\n" + row + "\n";
+  };
+  auto dump = [](const std::string& columns, const std::string& row) {
+    return "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n0 10\n0 10\n"
+           "0 10\nITEM: ATOMS " + columns + "\n" + row + "\n";
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fine + xyz("A 1e300 0 0 0.5"), "frame 1, column 'pos': particle 0 has x = 1e+300"},
+      {xyz("A 0 -2e13 0 0.5"), "frame 0, column 'pos': particle 0 has y = -2e+13"},
+      {xyz("A 0 0 0 1e300"), "frame 0, column 'radius': particle 0 has radius 1e+300"},
+      {dump("id x y z", "1 1e300 1 1"), "frame 0, column 'x': particle 0 has x = 1e+300"},
+      {dump("id xs ys zs", "1 0.5 1e299 0.5"), "column 'ys': particle 0 has y = 1e+299"},
+      {dump("id x y z diameter", "1 1 1 1 1e300"),
+       "column 'diameter': particle 0 has radius 5e+299"},
+  };
+  for (const auto& [text, says] : cases) {
+    const std::string msg = error_of(text);
+    EXPECT_NE(msg.find("snapshot 'mem.xyz' frame "), std::string::npos) << msg;
+    EXPECT_NE(msg.find(says), std::string::npos) << text << "\n" << msg;
+  }
+  EXPECT_EQ(error_of(xyz("A 1e12 -1e12 0 1e12")), "accepted");
+
+  // GSD holds floats: 3e38 is finite there.
+  for (const auto& [x, r, says] :
+       {std::tuple{3e38, 0.5, std::string("column 'particles/position': particle 1 has x = ")},
+        std::tuple{1.0, 1e38, std::string("column 'particles/diameter': particle 1 has radius")}}) {
+    Snapshot s;
+    s.info.dim = 2;
+    s.position = {{1, 2, 0}, {x, 0, 0}};
+    s.radius = {0.5, r};
+    s.active = {1, 1};
+    const std::string path = test::out_path("absurd.gsd");
+    write_gsd(path, s);
+    std::string msg = "accepted";
+    try {
+      read_snapshot(path);
+    } catch (const UserError& e) {
+      msg = e.what();
+    }
+    EXPECT_NE(msg.find("absurd.gsd' frame 0, " + says), std::string::npos) << msg;
+  }
+}
+
+// A frame of no particles is read as one (its Properties were blamed for columns its no lines
+// could not hold).
+TEST(ExtXyz, AFrameOfNoParticlesIsRead) {
+  const SnapshotFile f = from_text("0\nProperties=species:S:1:pos:R:3 Time=1\n");
+  ASSERT_EQ(f.frame_count(), 1u);
+  EXPECT_EQ(f.read(0).size(), 0u);
+}
+
+// The one quoting rule for input in messages: controls and bytes that are not UTF-8 as \xNN,
+// UTF-8 text kept, long text cut.
+TEST(SnapshotFile, QuotedInputIsEscaped) {
+  EXPECT_EQ(escaped("a\x1b[31mb\x07\n"), "a\\x1B[31mb\\x07\\x0A");
+  EXPECT_EQ(escaped("caf\xc3\xa9 \xff\xc2\x9b"), "caf\xc3\xa9 \\xFF\\xC2\\x9B");
+  EXPECT_EQ(escaped("abcdef", 3), "abc...");
+  const std::string msg = error_of("\x1b]0;title\x07 1 2\n");
+  EXPECT_EQ(msg.find('\x1b'), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\\x1B]0;title\\x07 1 2"), std::string::npos) << msg;
 }
 
 }  // namespace
