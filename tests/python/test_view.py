@@ -46,7 +46,12 @@ def test_view_of_a_run_folder_is_the_command_page(out_dir):
     page = gs.view(run)
     h = header(page.html)
     assert h["kind"] == "run" and len(h["frames"]) == 2 and h["timeseries"].startswith("t,")
-    assert header((run / "index.html").read_text())["frames"] == h["frames"]
+    own = header((run / "index.html").read_text())["frames"]
+    # The folder's own page names its files relative to itself; all else is the same.
+    assert [f.pop("source") for f in own] == ["snapshots/tsim_50.xyz", "snapshots/tsim_100.xyz"]
+    assert [f.pop("source") for f in h["frames"]] == [
+        str(run / "snapshots" / "tsim_50.xyz"), str(run / "snapshots" / "tsim_100.xyz")]
+    assert own == h["frames"]
 
 
 def test_view_refuses_other_things():
