@@ -141,13 +141,8 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads, run_now);
     if (!c.delta_scan) {
-      auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
-      if (c.superseded_for_alpha)
-        for (auto& m : more)
-          if (m.quantity.starts_with("alpha from")) {
-            m.counted = false;
-            m.note = "superseded by d3_r1_large (the same physics in a larger box); " + m.note;
-          }
+      const CaseContext context{c.name, slope_figure_of(c), c.collapse, c.superseded_for_alpha};
+      const auto more = case_comparisons(context, c.spec, cr.fits);
       cmp.insert(cmp.end(), more.begin(), more.end());
     }
     results.push_back(std::move(cr));

@@ -275,7 +275,8 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     plan.cases.push_back(std::move(c));
   };
   for (int d : {2, 3}) {
-    for (const RunSize& s : sizes_of(mode, d)) {
+    const auto sizes = sizes_of(mode, d);
+    for (const RunSize& s : sizes) {
       EnsembleSpec e;
       e.physics.dim = d;
       e.physics.particles = s.particles;
@@ -288,6 +289,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
       std::string name = "d";
       name.append(std::to_string(d)).append("_r").append(format_number(s.r));
       add(name, e, CaseRole::Paper);
+      plan.cases.back().collapse = &s == &sizes.front();  // the lists start at r = 0.1
     }
   }
   {

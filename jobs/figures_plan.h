@@ -32,6 +32,9 @@ struct FigureCase {
   // The small 3D r = 1 case beside d3_r1_large: kept for Fig. 3, its alpha readings not counted
   // (its box is too small for the late elastic blast).
   bool superseded_for_alpha = false;
+  // The case of the paper's Figs. 4 and 5 (its smallest r in each dimension): the collapse of
+  // P(R,t) and P(v,t) is read on it.
+  bool collapse = false;
   // Limit: the time from which E_t's local slope is expected to be on its plateau (the plan's
   // comment says where each comes from); t_max lies at least half a decade past it, the span
   // the plateau rule needs (analysis/effective_exponent.h). 0: not run to its plateau (3D

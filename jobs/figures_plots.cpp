@@ -572,7 +572,7 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
   check(fig3(results, out));
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
-    if (c.plan->role == CaseRole::Paper && p.restitution == 0.1)
+    if (c.plan->collapse)
       check(fig_collapse(c, out, p.dim == 2 ? "fig4_collapse_2d" : "fig5_collapse_3d",
                          p.dim == 2 ? 4 : 5));
     if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
