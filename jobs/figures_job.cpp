@@ -142,7 +142,11 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads, run_now);
     if (!c.delta_scan) {
       const CaseContext context{c.name, slope_figure_of(c), c.collapse, c.superseded_for_alpha};
-      const auto more = case_comparisons(context, c.spec, cr.fits);
+      auto more = case_comparisons(context, c.spec, cr.fits);
+      // The snowplow runs answer their own question (the report's section), not the paper's.
+      if (c.role == CaseRole::Snowplow)
+        for (auto& m : more)
+          if (m.role == Role::Counted) m.role = Role::Reported;
       cmp.insert(cmp.end(), more.begin(), more.end());
     }
     results.push_back(std::move(cr));
@@ -279,7 +283,7 @@ bool estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
      << (o.long_3d ? " --long" : "") << (o.limit ? " --limit" : "")
      << (o.limit && o.limit_dim != 0 ? " --limit-dim " + std::to_string(o.limit_dim) : "")
-     << "`\n\n"
+     << (o.snowplow ? " --snowplow" : "") << "`\n\n"
      << "The whole job run with " << o.sample << " realisations per case on " << o.threads
      << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
      << " in rounds of " << o.threads
@@ -323,7 +327,8 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     throw UsageError("--limit-dim must be 2 or 3");
   if (o.limit_dim != 0 && !o.limit) throw UsageError("--limit-dim needs --limit");
   if (o.resume && o.estimate) throw UsageError("an estimate cannot be resumed");
-  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim);
+  const FiguresPlan plan =
+      figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim, o.snowplow);
   FiguresResult out;
   if (o.resume) {
     out.dir = o.out;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/json.h"
+#include "analysis/snowplow.h"
 #include "io/atomic_file.h"
 #include "sim/format.h"
 
@@ -146,6 +147,73 @@ std::string phi1_limit_markdown(const Crossovers& crossovers) {
 }
 
 // Every exponent of every case with its plateau and the local slope's drift across it.
+// The paper's "faster particles on the inside edge" as numbers, per case at the last snapshot:
+// the mean speed inside the band's median radius over that outside it, and the correlation of
+// speed with distance, each with its standard error over realisations.
+std::string inner_edge_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "### The inner edge's speed\n\n"
+        "Mean speed of the active particles inside their median distance from the centre of "
+        "mass over that of those outside it (> 1: faster inside), and the Pearson correlation "
+        "of speed with distance (< 0: faster inside), at the last snapshot; +- standard error "
+        "over realisations; z of the ratio against 1.\n\n"
+        "| case | d | r | inner / outer speed | z against 1 | correlation(speed, R) |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    if (c.plan->delta_scan) continue;
+    const auto& f = c.fits;
+    const double ratio = f.last_scalar("inner_outer_ratio");
+    const double sem = f.last_scalar_sem("inner_outer_ratio");
+    md << "| " << c.plan->name << " | " << c.plan->spec.physics.dim << " | "
+       << format_number(c.plan->spec.physics.restitution) << " | " << figure_number(ratio, 4)
+       << " +- " << figure_number(sem, 2) << " | "
+       << (sem > 0 ? figure_number((ratio - 1) / sem, 3) : std::string("-")) << " | "
+       << figure_number(f.last_scalar("inner_correlation"), 3) << " +- "
+       << figure_number(f.last_scalar_sem("inner_correlation"), 2) << " |\n";
+  }
+  return md.str();
+}
+
+std::string z_cell(const SnowplowReading& r) {
+  if (!std::isfinite(r.exponent)) return "no plateau | - | -";
+  return figure_number(r.exponent, 4) + " +- " + figure_number(r.sigma, 2) + " | " +
+         figure_number(r.z_momentum, 3) + " | " + figure_number(r.z_pressure, 3);
+}
+
+// The snowplow question: per r < 1 case, the exponents of R_t, N_t, E_t and P_r with their z
+// against each picture, and the verdict (analysis/snowplow.h).
+std::string snowplow_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "## The snowplow question\n\n"
+        "The paper's alpha = 1/(d+1) assumes the band conserves its radial momentum "
+        "(momentum-conserving snowplow: P_r constant). Barbier, Villamaina and Trizac (Phys. "
+        "Rev. Lett. 115, 214301 (2015), \"Blast dynamics in a dissipative gas\") argue for a "
+        "hot core that keeps pushing the shell, a pressure-driven snowplow with alpha = "
+        "2/(d+4) for an adiabatic core: 2/7 against 1/4 in 3D, the same 1/3 in 2D. Each "
+        "picture predicts every exponent: R_t ~ t^alpha, N_t ~ t^(alpha d), E_t ~ "
+        "t^(alpha (d+2) - 2), P_r ~ t^(alpha (d+1) - 1) (1/4: 1, 3/4, -3/4, 0; 2/7: 0.2857, "
+        "0.8571, -0.5714, 0.1429). Below, each measured exponent (plateau fit, sigma = "
+        "statistics and window systematic combined) with z against the momentum-conserving "
+        "(z_mc) and pressure-driven (z_pd) value; the verdict weighs them by chi^2 = sum z^2 "
+        "(odds exp(delta chi^2 / 2), 'neither' when the nearer picture's chi^2 lies beyond "
+        "its 99.7% quantile). `figures --snowplow` adds runs long enough to decide (3D r = "
+        "0.1, 0.5 to 1.2e6; 2D to 2e6; fig11_snowplow_3d.png).\n\n"
+        "| case | R_t | z_mc | z_pd | N_t | z_mc | z_pd | E_t | z_mc | z_pd | P_r | z_mc | "
+        "z_pd | chi^2 mc | chi^2 pd | favours |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    if (p.elastic() || c.plan->delta_scan) continue;
+    const SnowplowVerdict v = weigh_snowplow(p.dim, c.fits);
+    md << "| " << c.plan->name;
+    for (const auto& r : v.readings) md << " | " << z_cell(r);
+    md << " | " << figure_number(v.chi2_momentum, 3) << " | "
+       << figure_number(v.chi2_pressure, 3) << " | " << v.favoured
+       << (v.strength.empty() ? "" : " (" + v.strength + ")") << " |\n";
+  }
+  return md.str();
+}
+
 std::string plateau_markdown(const std::vector<CaseResult>& results) {
   std::ostringstream md;
   md << "### Plateaus and their drift\n\n"
@@ -305,6 +373,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << "### Sensitivity: other readings of the paper's numbers (not counted)\n\n"
      << sensitivity_markdown(cmp) << "\n"
      << plateau_markdown(results) << "\n"
+     << inner_edge_markdown(results) << "\n"
+     << snowplow_markdown(results) << "\n"
      << local_phi1_markdown(crossovers) << "\n"
      << energy_phi1_markdown(crossovers) << "\n"
      << phi1_limit_markdown(crossovers) << "\n## Definitions\n\n"
@@ -325,6 +395,8 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
         "- fig8_local_slopes_<case>: local slopes of N_t, E_t, R_t, R_front, P_r, P_r/N_t and "
         "C_t with bootstrap bands, theory lines and plateau fits (CSV beside).\n"
         "- fig9_packing: active-weighted distribution of the cell packing in 2D.\n"
+        "- fig11_snowplow_3d: local slopes of R_t, N_t, E_t and P_r of every 3D r < 1 case "
+        "against alpha = 1/4 and 2/7 (the snowplow question).\n"
         "- Each figure is a .png (and .svg/.pdf with --format) from the .gp script and .csv "
         "beside it. summary.json: every comparison as {quantity, d, r, measured, sigma_stat, "
         "sigma_sys, theory, z, role, agrees}.\n"

@@ -11,6 +11,7 @@
 #include "analysis/ensemble_fits.h"
 #include "analysis/paper.h"
 #include "analysis/shock.h"
+#include "analysis/snowplow.h"
 #include "sim/rng.h"
 
 namespace gs {
@@ -294,6 +295,44 @@ TEST(Verdicts, SummaryCountsOnlyTheCountedRows) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("exponent of N_t"), std::string::npos);
+}
+
+// Fits whose R_t, N_t, E_t and P_r exponents are those of a given alpha, sigma 0.003 each.
+EnsembleFits fits_of_alpha(int d, double alpha) {
+  EnsembleFits f;
+  for (Quantity q : {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
+                     Quantity::RadialMomentum}) {
+    ExponentFit e;
+    e.kind = q;
+    e.fit.exponent = exponent_from_alpha(q, d, alpha);
+    e.fit.standard_error = 0.003;
+    f.exponents.push_back(e);
+  }
+  return f;
+}
+
+TEST(Snowplow, WeighsTheTwoPicturesByTheirZScores) {
+  // 3D: 1/4 against 2/7 is 0.036 in R_t, 0.143 in P_r; with sigma 0.003 each reading tells them
+  // apart by 12-48 sigma.
+  const SnowplowVerdict m = weigh_snowplow(3, fits_of_alpha(3, 0.25));
+  EXPECT_EQ(m.favoured, "momentum-conserving");
+  EXPECT_EQ(m.used, 4u);
+  EXPECT_NEAR(m.chi2_momentum, 0, 1e-18);
+  EXPECT_EQ(m.strength, "very strong");
+  const SnowplowVerdict p = weigh_snowplow(3, fits_of_alpha(3, 2.0 / 7));
+  EXPECT_EQ(p.favoured, "pressure-driven");
+  // P_r's z against the momentum-conserving 0 is (1/7) / 0.003.
+  EXPECT_NEAR(p.readings[3].z_momentum, (1.0 / 7) / 0.003, 1e-9);
+  // Neither: alpha 0.32 is far from both.
+  EXPECT_EQ(weigh_snowplow(3, fits_of_alpha(3, 0.32)).favoured, "neither");
+  // Midway the odds are even.
+  const SnowplowVerdict mid = weigh_snowplow(3, fits_of_alpha(3, (0.25 + 2.0 / 7) / 2));
+  EXPECT_EQ(mid.strength, "both excluded");  // 6 sigma from each in R_t alone
+  // 2D: the same alpha, so no choice; no plateau: no readings.
+  EXPECT_EQ(weigh_snowplow(2, fits_of_alpha(2, 1.0 / 3)).favoured, "both (the same alpha in 2D)");
+  EnsembleFits none = fits_of_alpha(3, 0.25);
+  for (auto& e : none.exponents) e.fit.exponent = std::nan("");
+  EXPECT_EQ(weigh_snowplow(3, none).favoured, "no readings");
 }
 
 }  // namespace
