@@ -298,7 +298,7 @@ std::string no_plateau_note(const PlateauSearch& s, const PlateauOptions& o, boo
   return "no plateau within the run: the local slope goes from " +
          short_text(s.mean_slope(f, f)) + " at t = " + short_text(s.t(f)) + " to " +
          short_text(s.mean_slope(l, l)) + " at t = " + short_text(s.t(l)) + "; no window of " +
-         short_text(o.min_decades) + " decades or more is flat within its error (" +
+         short_text(o.min_decades) + " decades or more passes the rule (" +
          closest_text(closest, closest_window);
 }
 

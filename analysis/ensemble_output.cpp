@@ -182,7 +182,7 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j["realisations"] = sums.count();
   j["realisation_indices"] = sums.indices();
   j["alpha_theory"] = f.alpha_theory;
-  j["alpha_theory_rule"] = p.restitution < 1 ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1";
+  j["alpha_theory_rule"] = !p.elastic() ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1";
   Json& exponents = j["exponents"] = Json::array();
   for (const auto& e : f.exponents)
     exponents.push_back({{"quantity", e.quantity},

@@ -108,7 +108,7 @@ std::string read_text(const std::filesystem::path& file) {
 }  // namespace
 
 double theory_alpha(const PhysicsConfig& c) {
-  return c.restitution < 1 ? 1.0 / (c.dim + 1) : 2.0 / (c.dim + 2);
+  return !c.elastic() ? 1.0 / (c.dim + 1) : 2.0 / (c.dim + 2);
 }
 
 EnsembleSpec checked(EnsembleSpec spec) {

@@ -58,7 +58,7 @@ SnowplowVerdict weigh_snowplow(int d, const EnsembleFits& fits) {
   v.chi2_pressure = chi_p;
   if (d == 2) {
     v.favoured = "both (the same alpha in 2D)";
-    v.strength = chi_m > kChi2Excluded[v.used] ? "and the data exclude it" : "";
+    v.strength = chi_m > kChi2Excluded[v.used] ? "the data exclude it" : "";
     return v;
   }
   const double near = std::min(chi_m, chi_p), far = std::max(chi_m, chi_p);

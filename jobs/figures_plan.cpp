@@ -322,7 +322,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     add("d3_r1_large", e, CaseRole::Elastic3D);
     for (auto& c : plan.cases)
       c.superseded_for_alpha =
-          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.restitution >= 1;
+          c.role == CaseRole::Paper && c.spec.physics.dim == 3 && c.spec.physics.elastic();
   }
   if (long_3d) {
     for (const Long3D& s : long3d_cases()) {

@@ -66,7 +66,7 @@ std::vector<const CaseResult*> cases_of(const std::vector<CaseResult>& all, int 
   std::vector<const CaseResult*> out;
   for (const auto& c : all)
     if (c.plan->role == CaseRole::Paper && c.plan->spec.physics.dim == d &&
-        (c.plan->spec.physics.restitution == 1.0) == elastic)
+        c.plan->spec.physics.elastic() == elastic)
       out.push_back(&c);
   return out;
 }
@@ -438,7 +438,18 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
   for (const auto& c : all)
     if (c.plan->spec.physics.dim == 3 && !c.plan->spec.physics.elastic() && !c.plan->delta_scan)
       cases.push_back(&c);
+  // From <N_t> >= 20 on, as the plateau search (earlier slopes are a handful of particles').
+  double t_start = std::numeric_limits<double>::infinity();
+  for (const CaseResult* c : cases) {
+    const Table ts = c->sums.timeseries();
+    for (std::size_t i = 0; i < ts.rows(); ++i)
+      if (ts.column("active")[i] >= 20) {
+        t_start = std::min(t_start, ts.column("t")[i]);
+        break;
+      }
+  }
   std::string gp = gnuplot_preamble(base, 1400, 1000);
+  if (std::isfinite(t_start)) gp += "set xrange [" + format_double(t_start) + ":*]\n";
   gp += "set multiplot layout 2,2 title 'Local slopes in 3D against the momentum-conserving "
         "(alpha = 1/4, dashed) and pressure-driven (alpha = 2/7, dotted) snowplows'\n"
         "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
@@ -458,7 +469,8 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
         write_csv(t, out.dir / csv);
       }
       plot += std::string(plot.empty() ? "plot " : ", ") + "'" + csv + "' skip 1 using 1:" +
-              std::to_string(q + 2) + " with lines lw 2 title '" + c->plan->name + "'";
+              std::to_string(q + 2) + " with lines lw 2 title '" + c->plan->name +
+              "' noenhanced";
     }
     char lines[200];
     std::snprintf(lines, sizeof lines,

@@ -29,7 +29,7 @@ std::string crossover_notes(const std::vector<CaseResult>& results) {
     const auto& p = c.plan->spec.physics;
     const bool scan = c.plan->role == CaseRole::DeltaScan;
     const bool tc1_case =
-        (c.plan->role == CaseRole::Paper || c.plan->role == CaseRole::Limit) && p.restitution < 1;
+        (c.plan->role == CaseRole::Paper || c.plan->role == CaseRole::Limit) && !p.elastic();
     if (!tc1_case && !scan) continue;
     const Crossover& tc = scan ? c.fits.tc2 : c.fits.tc1;
     if (tc.found && !scan) continue;
@@ -373,11 +373,11 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << "### Sensitivity: other readings of the paper's numbers (not counted)\n\n"
      << sensitivity_markdown(cmp) << "\n"
      << plateau_markdown(results) << "\n"
-     << inner_edge_markdown(results) << "\n"
-     << snowplow_markdown(results) << "\n"
      << local_phi1_markdown(crossovers) << "\n"
      << energy_phi1_markdown(crossovers) << "\n"
-     << phi1_limit_markdown(crossovers) << "\n## Definitions\n\n"
+     << phi1_limit_markdown(crossovers) << "\n"
+     << inner_edge_markdown(results) << "\n"
+     << snowplow_markdown(results) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";
