@@ -148,6 +148,14 @@ TEST(Verdicts, AgreeMeansWithinTwoCombinedSigmaAndNoTolerance) {
   EXPECT_TRUE(exponent_row(0.256, 0.002, 0.003, 0.25).agrees());
   // Not measured is neither.
   EXPECT_FALSE(exponent_row(std::nan(""), 0.002, 0.001, 0.25).agrees());
+  // A lopsided interval (the best-collapsing alpha): the theory inside it or not.
+  Comparison inside = exponent_row(0.3425, 0.005, std::nan(""), 1.0 / 3);
+  inside.relation = Relation::Inside;
+  inside.ci_lo = 0.33;
+  inside.ci_hi = 0.3525;
+  EXPECT_TRUE(inside.agrees());
+  inside.theory = 0.25;  // 3D's alpha against a 2D collapse
+  EXPECT_FALSE(inside.agrees());
 }
 
 // An ensemble's fits made by hand: every exponent at the theory's value with sigma 0.002.
