@@ -1,9 +1,9 @@
 #pragma once
 // Is the band a momentum-conserving or a pressure-driven snowplow? The paper's alpha = 1/(d+1)
 // rests on the band's radial momentum being conserved (P_r constant); a hot core that keeps
-// pushing the shell (the pressure-driven snowplow of Barbier, Villamaina and Trizac, Phys. Rev.
-// Lett. 115, 214301 (2015), with an adiabatic core) gives alpha = 2/(d+4): 2/7 against 1/4 in
-// 3D, the same 1/3 in 2D. Each picture predicts the exponents of R_t, N_t, E_t and P_r
+// pushing the shell (the pressure-driven snowplow of Barbier, Villamaina and Trizac, "Blast
+// dynamics in a dissipative gas", Phys. Rev. Lett. 2015, with an adiabatic core) gives alpha =
+// 2/(d+4): 2/7 against 1/4 in 3D, the same 1/3 in 2D. Each picture predicts the exponents of R_t, N_t, E_t and P_r
 // (analysis/ensemble_fits.h exponent_from_alpha); the measured exponents weigh them by their
 // z-scores, as the phi1 weighing does (analysis/paper.h).
 #include <limits>
