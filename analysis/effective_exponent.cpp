@@ -120,158 +120,248 @@ double spread(std::span<const double> v) {
 
 }  // namespace
 
-Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
-  const auto& t = band.t;
-  const std::size_t n = t.size();
-  std::vector<bool> usable(n);
-  std::vector<double> x(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    usable[i] = t[i] > 0 && t[i] >= o.t_min && t[i] <= o.t_max && std::isfinite(band.slope[i]) &&
-                std::isfinite(band.lo[i]) && std::isfinite(band.hi[i]);
-    x[i] = t[i] > 0 ? std::log(t[i]) : 0;
+namespace {
+
+// How far a window fails the rule (<= 0: it passes), with the numbers the note quotes.
+struct Verdict {
+  double drift, drift_error, curvature, curvature_error;
+  bool piece_worst = false;  // a piece's mean fails by most: it and its error
+  double piece = 0, piece_error = 0;
+  bool reference_worst = false;  // the distance from the last decade's slope fails by most
+  double reference = 0, reference_error = 0;
+  double excess;
+};
+
+// The plateau rule (effective_exponent.h) over one slope band: the usable samples, prefix sums
+// of the slope and of every resampled slope, and the judgement of a window.
+class PlateauSearch {
+ public:
+  PlateauSearch(const SlopeBand& band, const PlateauOptions& o) : band_(band), o_(o) {
+    const auto& t = band.t;
+    const std::size_t n = t.size();
+    usable_.resize(n);
+    x_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      usable_[i] = t[i] > 0 && t[i] >= o.t_min && t[i] <= o.t_max &&
+                   std::isfinite(band.slope[i]) && std::isfinite(band.lo[i]) &&
+                   std::isfinite(band.hi[i]);
+      x_[i] = t[i] > 0 ? std::log(t[i]) : 0;
+      if (usable_[i]) first_ = std::min(first_, i), last_ = i, any_ = true;
+    }
+    seg_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) seg_[i] = !usable_[i] ? i + 1 : (i > 0 ? seg_[i - 1] : 0);
+    mean_prefix_ = prefix_of(band.slope, usable_);
+    for (const auto& d : band.draws) draw_prefix_.push_back(prefix_of(d, usable_));
+    dd_.resize(draw_prefix_.size());
+    need_ = o.min_decades * std::numbers::ln10 * (1 - 1e-9);
+    piece_ = o.piece_decades * std::numbers::ln10 * (1 - 1e-9);
+    if (!any_) return;
+    for (std::size_t m = 0; m <= std::size_t((x_[last_] - x_[first_]) / piece_); ++m)
+      z_of_pieces_.push_back(m > 3 ? bonferroni_z(o.z, m) : o.z);
+    if (o.reference_decades > 0) {
+      ref_lo_ = last_;
+      while (ref_lo_ > seg_[last_] &&
+             x_[last_] - x_[ref_lo_ - 1] <= o.reference_decades * std::numbers::ln10 * (1 + 1e-9))
+        --ref_lo_;
+    }
   }
-  // seg[i]: the first sample of the run of usable samples that ends at i.
-  std::vector<std::size_t> seg(n, 0);
-  for (std::size_t i = 0; i < n; ++i) seg[i] = !usable[i] ? i + 1 : (i > 0 ? seg[i - 1] : 0);
-  const auto mean_prefix = prefix_of(band.slope, usable);
-  std::vector<std::vector<double>> draw_prefix;
-  for (const auto& d : band.draws) draw_prefix.push_back(prefix_of(d, usable));
-  const double need = o.min_decades * std::numbers::ln10 * (1 - 1e-9);
 
-  struct Verdict {
-    double drift, drift_error, curvature, curvature_error;
-    bool piece_worst = false;  // a piece's mean (see below) fails by most: it and its error
-    double piece = 0, piece_error = 0;
-    double excess;
-  };
-  std::vector<double> dd(draw_prefix.size()), kk(draw_prefix.size());
-  // z_m of the pieces' test below, for every m a window of usable samples can have.
-  double x_lo = INFINITY, x_hi = -INFINITY;
-  for (std::size_t i = 0; i < n; ++i)
-    if (usable[i]) x_lo = std::min(x_lo, x[i]), x_hi = std::max(x_hi, x[i]);
-  std::vector<double> z_of_pieces;
-  for (std::size_t m = 0; x_lo < x_hi && m <= std::size_t((x_hi - x_lo) / need); ++m)
-    z_of_pieces.push_back(m > 3 ? bonferroni_z(o.z, m) : o.z);
-  auto judge = [&](const Thirds& w) {
+  bool any() const { return any_; }
+  std::size_t first() const { return first_; }
+  std::size_t last() const { return last_; }
+  double x(std::size_t i) const { return x_[i]; }
+  double t(std::size_t i) const { return band_.t[i]; }
+  bool usable(std::size_t i) const { return usable_[i]; }
+  std::size_t segment_start(std::size_t i) const { return seg_[i]; }
+  bool long_enough(std::size_t a, std::size_t b) const { return x_[b] - x_[a] >= need_; }
+  double mean_slope(std::size_t a, std::size_t b) const {
+    return Thirds::mean(mean_prefix_, a, b + 1);
+  }
+
+  // The thirds of [a, b], or false when one of them holds no sample.
+  bool thirds(std::size_t a, std::size_t b, Thirds& w) const {
+    const double c1 = x_[a] + (x_[b] - x_[a]) / 3, c2 = x_[a] + 2 * (x_[b] - x_[a]) / 3;
+    const auto i1 =
+        std::size_t(std::lower_bound(x_.begin() + long(a), x_.begin() + long(b), c1) - x_.begin());
+    const auto i2 = std::size_t(
+        std::lower_bound(x_.begin() + long(i1), x_.begin() + long(b), c2) - x_.begin());
+    w = {a, i1, i2, b};
+    return i1 > a && i2 > i1 && b >= i2;
+  }
+
+  Verdict judge(const Thirds& w) {
     Verdict v{};
-    v.drift = w.drift(mean_prefix);
-    v.curvature = w.curvature(mean_prefix);
-    for (std::size_t k = 0; k < draw_prefix.size(); ++k) {
-      dd[k] = w.drift(draw_prefix[k]);
-      kk[k] = w.curvature(draw_prefix[k]);
-    }
-    v.drift_error = spread(dd);
-    v.curvature_error = spread(kk);
-    v.excess = std::max(std::fabs(v.drift) - (o.z * v.drift_error + o.floor),
-                        std::fabs(v.curvature) - (o.z * v.curvature_error + o.floor));
-    // Thirds average a wave of about a third's length away: a window of four decades whose slope
-    // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95). So the window is
-    // also cut into pieces of min_decades or more, and each piece's mean must lie within
-    // z_m sigma + floor of the window's, z_m the two-sided normal quantile at the level of z
-    // shared by the m pieces (Bonferroni), so that the m of them together reject a flat slope's
-    // window no more often than one test at z does.
-    const auto m = std::max<std::size_t>(3, std::size_t((x[w.b] - x[w.a]) / need));
-    if (m > 3) {
-      const double zm = z_of_pieces[m];
-      // Piece j holds the samples [lo, hi); the last ends with the window.
-      for (std::size_t j = 0, lo = w.a, hi; j < m; ++j, lo = hi) {
-        const double end = x[w.a] + (x[w.b] - x[w.a]) * double(j + 1) / double(m);
-        hi = j + 1 == m ? w.b + 1
-                        : std::size_t(std::lower_bound(x.begin() + long(lo),
-                                                       x.begin() + long(w.b) + 1, end) -
-                                      x.begin());
-        if (hi <= lo) continue;  // no sample in the piece: the grid is coarser than it
-        const auto deviation = [&](const std::vector<double>& prefix) {
-          return Thirds::mean(prefix, lo, hi) - Thirds::mean(prefix, w.a, w.b + 1);
-        };
-        const double dev = deviation(mean_prefix);
-        for (std::size_t k = 0; k < draw_prefix.size(); ++k) dd[k] = deviation(draw_prefix[k]);
-        const double err = spread(dd);
-        const double excess = std::fabs(dev) - (zm * err + o.floor);
-        if (excess > v.excess) {
-          v.excess = excess;
-          v.piece_worst = true;
-          v.piece = dev;
-          v.piece_error = err;
-        }
-      }
-    }
+    v.drift = w.drift(mean_prefix_);
+    v.curvature = w.curvature(mean_prefix_);
+    v.drift_error = spread_of([&](const auto& p) { return w.drift(p); });
+    v.curvature_error = spread_of([&](const auto& p) { return w.curvature(p); });
+    v.excess = std::max(excess(v.drift, v.drift_error, o_.z), excess(v.curvature,
+                                                                     v.curvature_error, o_.z));
+    judge_pieces(w, v);
+    judge_reference(w, v);
     return v;
-  };
+  }
 
-  std::size_t last_usable = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (usable[i]) last_usable = i;
+ private:
+  // How far |value| lies beyond z sigma + floor, or beyond the absolute bound.
+  double excess(double value, double error, double z) const {
+    return std::max(std::fabs(value) - (z * error + o_.floor), std::fabs(value) - o_.max_drift);
+  }
+
+  template <class F>
+  double spread_of(F f) {
+    for (std::size_t k = 0; k < draw_prefix_.size(); ++k) dd_[k] = f(draw_prefix_[k]);
+    return spread(dd_);
+  }
+
+  // Thirds average a wave of about a third's length away: a window of four decades whose slope
+  // swings by +-0.025 passed with equal thirds (3D R_t of r = 0.95). So the window is also cut
+  // into pieces of piece_decades or more, and each piece's mean must lie within z_m sigma +
+  // floor of the window's, z_m the two-sided normal quantile at the level of z shared by the m
+  // pieces (Bonferroni), so that the m of them together reject a flat slope's window no more
+  // often than one test at z does.
+  void judge_pieces(const Thirds& w, Verdict& v) {
+    const auto m = std::max<std::size_t>(3, std::size_t((x_[w.b] - x_[w.a]) / piece_));
+    if (m <= 3) return;
+    const double zm = z_of_pieces_[m];
+    // Piece j holds the samples [lo, hi); the last ends with the window.
+    for (std::size_t j = 0, lo = w.a, hi; j < m; ++j, lo = hi) {
+      const double end = x_[w.a] + (x_[w.b] - x_[w.a]) * double(j + 1) / double(m);
+      hi = j + 1 == m ? w.b + 1
+                      : std::size_t(std::lower_bound(x_.begin() + long(lo),
+                                                     x_.begin() + long(w.b) + 1, end) -
+                                    x_.begin());
+      if (hi <= lo) continue;  // no sample in the piece: the grid is coarser than it
+      const auto deviation = [&](const std::vector<double>& prefix) {
+        return Thirds::mean(prefix, lo, hi) - Thirds::mean(prefix, w.a, w.b + 1);
+      };
+      const double dev = deviation(mean_prefix_);
+      const double err = spread_of(deviation);
+      const double e = std::fabs(dev) - (zm * err + o_.floor);
+      if (e > v.excess) v = with_worst(v, e, true, dev, err);
+    }
+  }
+
+  void judge_reference(const Thirds& w, Verdict& v) {
+    if (o_.reference_decades <= 0 || ref_lo_ >= last_) return;
+    const auto deviation = [&](const std::vector<double>& prefix) {
+      return Thirds::mean(prefix, w.a, w.b + 1) - Thirds::mean(prefix, ref_lo_, last_ + 1);
+    };
+    const double dev = deviation(mean_prefix_);
+    const double err = spread_of(deviation);
+    const double e = excess(dev, err, o_.z);
+    if (e > v.excess) v = with_worst(v, e, false, dev, err);
+  }
+
+  static Verdict with_worst(Verdict v, double excess, bool piece, double dev, double err) {
+    v.excess = excess;
+    v.piece_worst = piece;
+    v.reference_worst = !piece;
+    (piece ? v.piece : v.reference) = dev;
+    (piece ? v.piece_error : v.reference_error) = err;
+    return v;
+  }
+
+  const SlopeBand& band_;
+  const PlateauOptions& o_;
+  std::vector<bool> usable_;
+  std::vector<double> x_;
+  std::vector<std::size_t> seg_;  // seg_[i]: the first sample of the usable run that ends at i
+  std::vector<double> mean_prefix_;
+  std::vector<std::vector<double>> draw_prefix_;
+  std::vector<double> dd_;
+  std::vector<double> z_of_pieces_;
+  double need_ = 0, piece_ = 0;
+  std::size_t first_ = std::numeric_limits<std::size_t>::max(), last_ = 0, ref_lo_ = 0;
+  bool any_ = false;
+};
+
+std::string closest_text(const Verdict& v, const Window& w) {
+  std::string s = "closest: [" + short_text(w.t_lo) + ", " + short_text(w.t_hi) + "], drift " +
+                   short_text(v.drift) + " +- " + short_text(v.drift_error) + ", curvature " +
+                   short_text(v.curvature) + " +- " + short_text(v.curvature_error);
+  if (v.piece_worst)
+    s += ", a piece off the mean by " + short_text(v.piece) + " +- " + short_text(v.piece_error);
+  if (v.reference_worst)
+    s += ", off the last decade's slope by " + short_text(v.reference) + " +- " +
+         short_text(v.reference_error);
+  return s + ")";
+}
+
+std::string no_plateau_note(const PlateauSearch& s, const PlateauOptions& o, bool any_window,
+                            const Verdict& closest, const Window& closest_window) {
+  if (!s.any()) return "no plateau within the run: no usable local slope";
+  if (!any_window)
+    return "no plateau within the run: the usable local slope spans less than " +
+           short_text(o.min_decades) + " decades";
+  const std::size_t f = s.first(), l = s.last();
+  return "no plateau within the run: the local slope goes from " +
+         short_text(s.mean_slope(f, f)) + " at t = " + short_text(s.t(f)) + " to " +
+         short_text(s.mean_slope(l, l)) + " at t = " + short_text(s.t(l)) + "; no window of " +
+         short_text(o.min_decades) + " decades or more passes the rule (" +
+         closest_text(closest, closest_window);
+}
+
+std::string transient_note(const PlateauSearch& s, std::size_t a, std::size_t b) {
+  const std::size_t l = s.last();
+  return "no plateau within the run: the latest window that passes the rule, [" +
+         short_text(s.t(a)) + ", " + short_text(s.t(b)) + "] (slope " +
+         short_text(s.mean_slope(a, b)) + "), ends " +
+         short_text((s.x(l) - s.x(b)) / std::numbers::ln10) +
+         " decades before the last usable sample (t = " + short_text(s.t(l)) + ", slope " +
+         short_text(s.mean_slope(l, l)) + "): a transient the slope leaves, not the asymptotic "
+         "regime";
+}
+
+}  // namespace
+
+Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
+  PlateauSearch s(band, o);
   Plateau p;
   bool any_window = false;
   Verdict closest{};
   Window closest_window;
   closest.excess = std::numeric_limits<double>::infinity();
-  for (std::size_t b = n; b-- > 0;) {
-    if (!usable[b]) continue;
-    for (std::size_t a = seg[b]; a < b && x[b] - x[a] >= need; ++a) {
-      const double c1 = x[a] + (x[b] - x[a]) / 3, c2 = x[a] + 2 * (x[b] - x[a]) / 3;
-      const auto i1 = std::size_t(std::lower_bound(x.begin() + long(a), x.begin() + long(b), c1) -
-                                  x.begin());
-      const auto i2 = std::size_t(std::lower_bound(x.begin() + long(i1), x.begin() + long(b), c2) -
-                                  x.begin());
-      if (i1 <= a || i2 <= i1 || b < i2) continue;  // a third without a sample
+  // Every passing window whose end lies this close to the last usable sample gives the spread.
+  const double gap = std::isfinite(o.max_end_gap_decades) ? o.max_end_gap_decades : 0.3;
+  std::vector<double> readings;
+  for (std::size_t b = band.t.size(); b-- > 0;) {
+    if (!s.usable(b)) continue;
+    const bool late = s.any() && s.x(s.last()) - s.x(b) <= gap * std::numbers::ln10 * (1 + 1e-9);
+    if (p.found && !late) break;
+    for (std::size_t a = s.segment_start(b); a < b && s.long_enough(a, b); ++a) {
+      Thirds w{};
+      if (!s.thirds(a, b, w)) continue;
       any_window = true;
-      const Thirds w{a, i1, i2, b};
-      const Verdict v = judge(w);
-      if (v.excess <= 0 && x[last_usable] - x[b] > o.max_end_gap_decades * std::numbers::ln10) {
-        p.note = "no plateau within the run: the latest window that passes the rule, [" +
-                 short_text(t[a]) + ", " + short_text(t[b]) + "] (slope " +
-                 short_text(Thirds::mean(mean_prefix, a, b + 1)) + "), ends " +
-                 short_text((x[last_usable] - x[b]) / std::numbers::ln10) +
-                 " decades before the last usable sample (t = " + short_text(t[last_usable]) +
-                 ", slope " + short_text(band.slope[last_usable]) +
-                 "): a transient the slope leaves, not the asymptotic regime";
+      const Verdict v = s.judge(w);
+      if (v.excess > 0) {
+        if (!p.found && v.excess < closest.excess) closest = v, closest_window = {s.t(a), s.t(b)};
+        continue;
+      }
+      if (p.found) {
+        readings.push_back(s.mean_slope(a, b));
+        continue;
+      }
+      if (s.x(s.last()) - s.x(b) > o.max_end_gap_decades * std::numbers::ln10) {
+        p.note = transient_note(s, a, b);
         return p;
       }
-      if (v.excess <= 0) {
-        p.found = true;
-        p.window = {t[a], t[b]};
-        p.exponent = Thirds::mean(mean_prefix, a, b + 1);
-        p.drift = v.drift;
-        p.drift_error = v.drift_error;
-        p.curvature = v.curvature;
-        p.curvature_error = v.curvature_error;
-        return p;
-      }
-      if (v.excess < closest.excess) {
-        closest = v;
-        closest_window = {t[a], t[b]};
-      }
+      p.found = true;
+      p.window = {s.t(a), s.t(b)};
+      p.exponent = s.mean_slope(a, b);
+      p.drift = v.drift;
+      p.drift_error = v.drift_error;
+      p.curvature = v.curvature;
+      p.curvature_error = v.curvature_error;
+      readings.push_back(p.exponent);
     }
   }
-  // Say where the slope goes instead: its value at the first and last usable samples, and the
-  // window that came closest.
-  std::size_t first = n, last = n;
-  for (std::size_t i = 0; i < n; ++i)
-    if (usable[i]) {
-      if (first == n) first = i;
-      last = i;
-    }
-  if (first == n) {
-    p.note = "no plateau within the run: no usable local slope";
-  } else if (!any_window) {
-    p.note = "no plateau within the run: the usable local slope spans less than " +
-             short_text(o.min_decades) + " decades";
-  } else {
-    p.note = "no plateau within the run: the local slope goes from " +
-             short_text(band.slope[first]) + " at t = " + short_text(t[first]) + " to " +
-             short_text(band.slope[last]) + " at t = " + short_text(t[last]) + "; no window of " +
-             short_text(o.min_decades) + " decades or more is flat within its error (closest: [" +
-             short_text(closest_window.t_lo) + ", " + short_text(closest_window.t_hi) +
-             "], drift " + short_text(closest.drift) + " +- " + short_text(closest.drift_error) +
-             ", curvature " + short_text(closest.curvature) + " +- " +
-             short_text(closest.curvature_error) +
-             (closest.piece_worst ? ", a piece off the mean by " + short_text(closest.piece) +
-                                            " +- " + short_text(closest.piece_error)
-                                      : std::string()) +
-             ")";
+  if (!p.found) {
+    p.note = no_plateau_note(s, o, any_window, closest, closest_window);
+    return p;
   }
+  p.passing_windows = readings.size();
+  p.window_spread = spread(readings);
   return p;
 }
 

@@ -14,8 +14,8 @@
 // realisations (the same resamples as the band, so the correlation of neighbouring slopes and of
 // the thirds is in them). The window is a plateau when |D| <= z sigma_D + floor and
 // |K| <= z sigma_K + floor (z = 2, ~95%; floor = 1e-3 only absorbs the rounding of exact
-// series; it is not a tolerance), and, in a window of 4 min_decades or more, when each of its
-// m = floor(span / min_decades) equal pieces has a mean slope within z_m sigma + floor of the
+// series; it is not a tolerance), and, in a window of 4 piece_decades or more, when each of its
+// m = floor(span / piece_decades) equal pieces has a mean slope within z_m sigma + floor of the
 // window's (z_m: z shared by m tests, Bonferroni), so that a swing of the slope that the thirds
 // average away is seen too. A slope that drifts, however slowly, is therefore rejected as
 // soon as the data resolve the drift: more realisations make the rule stricter, not looser.
@@ -57,19 +57,35 @@ struct PlateauOptions {
   double z = 2;          // drift and curvature allowed: z standard deviations over resamples
   double floor = 1e-3;   // added to z sigma: the rounding of an exact series, not a tolerance
   double min_decades = 0.5;
+  // The pieces' test cuts a window into pieces of at least this many decades (from 4 of them).
+  double piece_decades = 0.5;
+  // An absolute bound on |D|, |K| and the distance from the last decade's slope, whatever their
+  // errors: a drift of 0.55 +- 0.28 passes "within 2 sigma" but is no plateau. Infinity: none.
+  double max_drift = std::numeric_limits<double>::infinity();
+  // > 0: the window's mean slope must also lie within z sigma + floor (and max_drift) of the
+  // mean slope over the last this-many decades of usable samples, so that a flat stretch at a
+  // dip's bottom, a hump's top or on the way up a rising slope is not taken for the asymptote.
+  double reference_decades = 0;
   double t_min = 0;  // only samples in [t_min, t_max]
   double t_max = std::numeric_limits<double>::infinity();
   // The latest plateau must end within this many decades of the last usable sample; one that
   // ends earlier is a transient the slope leaves (every later window failed the rule), not the
-  // asymptotic regime, and is reported as no plateau (3D N_t's [32, 562] of --quick,
-  // the elastic build-up, while the slope drifts on for 1.7 decades). Infinity: any window.
+  // asymptotic regime, and is reported as no plateau (3D N_t's [32, 562] of --quick, the elastic
+  // build-up, while the slope drifts on for 1.7 decades). Infinity: any window.
   double max_end_gap_decades = std::numeric_limits<double>::infinity();
 };
 
-// The plateau of an asymptotic exponent: ending at most 0.3 decade (three smoothing half widths
-// of the local slope, so at least one independent slope value) before the last usable sample.
+// The plateau of an asymptotic exponent: at least a decade long, drift and curvature within
+// 0.005 as well as within their errors, consistent with the last decade's slope, and ending at
+// most 0.3 decade (three smoothing half widths of the local slope, so at least one independent
+// slope value) before the last usable sample. 0.005 is a quarter of the 0.02 by which the 2D
+// E_t and R_t readings sit off 1/3 and of the gap between 1/4 and 2/7 in 3D (0.036): a slope
+// that moves by more across its window cannot tell those apart.
 inline PlateauOptions asymptotic_plateau() {
   PlateauOptions p;
+  p.min_decades = 1;
+  p.max_drift = 0.005;
+  p.reference_decades = 1;
   p.max_end_gap_decades = 0.3;
   return p;
 }
@@ -82,6 +98,11 @@ struct Plateau {
   double drift_error = std::numeric_limits<double>::quiet_NaN();  // sigma_D
   double curvature = std::numeric_limits<double>::quiet_NaN();    // K
   double curvature_error = std::numeric_limits<double>::quiet_NaN();
+  // The systematic of the window's choice: the standard deviation of the mean local slope over
+  // every window that passes the rule and ends within max_end_gap_decades (0.3 decade when that
+  // is unbounded) of the last usable sample; 0 when one window passes.
+  double window_spread = std::numeric_limits<double>::quiet_NaN();
+  std::size_t passing_windows = 0;
   std::string note;  // where the slope goes when there is no plateau
 };
 Plateau find_plateau(const SlopeBand& band, const PlateauOptions& options = {});

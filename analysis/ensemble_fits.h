@@ -2,7 +2,9 @@
 // The numbers an ensemble is for (Jabeen, Rajesh, Ray, EPL 2010):
 //  - effective exponents (analysis/effective_exponent.h): the local slope d ln <X> / d ln t with
 //    a bootstrap band, for N_t ~ t^(alpha d), E_t ~ t^(alpha d + 2 alpha - 2), R_t (rms) and the
-//    front radius ~ t^alpha, the front speed dR_front/dt ~ t^(alpha - 1) and the collision count
+//    front radius ~ t^alpha, the radial momentum P_r ~ N_t R_t / t ~ t^(alpha (d+1) - 1), the
+//    mean radial speed P_r / N_t ~ t^(alpha - 1) (the front speed; dR_front/dt of a front
+//    quantised in shells of 2 diameters measured the shells' noise) and the collision count
 //    (~ t^(2(d+1)/(d+2)) for r = 1, Antal, Krapivsky, Redner 2008); each fitted as a
 //    least-squares line of ln <X> against ln t on the plateau of its local slope (found after
 //    <N_t> reaches 20), with a 95% percentile interval from 1000 bootstrap resamples of the
@@ -44,9 +46,16 @@ struct FitOptions {
 // Throws UserError naming --window unless t_lo < t_hi and the window lies in the sampled range.
 void check_window(const EnsembleSpec& spec, const Window& w);
 
+// The fitted quantities.
+enum class Quantity { ActiveCount, Energy, RadiusRms, FrontRadius, RadialMomentum, RadialSpeed,
+                      Collisions };
+// N_t, E_t, R_t, R_front, P_r, P_r/N_t, C_t.
+const char* quantity_name(Quantity q);
+
 struct ExponentFit {
-  std::string column;    // a kCurveColumns name, or "front_speed"
-  std::string quantity;  // N_t, E_t, R_t, R_front, dR_front/dt, C_t
+  std::string column;  // a kCurveColumns name, or "radial_speed" (P_r / N_t per realisation)
+  Quantity kind = Quantity::ActiveCount;
+  std::string quantity;  // quantity_name(kind)
   double theory = std::numeric_limits<double>::quiet_NaN();  // NaN: no prediction
   std::string theory_source;
   SlopeBand slope;
@@ -59,12 +68,17 @@ struct ExponentFit {
   // least-squares error for a single realisation); NaN for the collision count.
   double alpha = std::numeric_limits<double>::quiet_NaN();
   double alpha_uncertainty = std::numeric_limits<double>::quiet_NaN();
+  // The exponent's systematic of the window's choice: the spread of the mean local slope over
+  // the plateau rule's passing windows (Plateau::window_spread); NaN without a plateau.
+  double window_systematic = std::numeric_limits<double>::quiet_NaN();
   std::string note;  // why there is no fit
 };
 
-// alpha from an exponent x of the quantity: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2),
-// R ~ t^alpha (R_t, R_front), dR_front/dt ~ t^(alpha - 1); NaN for any other quantity.
-double alpha_from_exponent(const std::string& quantity, int d, double x);
+// The exponent of the quantity for a given alpha: N ~ t^(alpha d), E ~ t^(alpha (d + 2) - 2),
+// R ~ t^alpha (R_t, R_front), P_r ~ t^(alpha (d + 1) - 1), P_r / N_t ~ t^(alpha - 1); NaN for the
+// collision count, and alpha_from_exponent its inverse.
+double exponent_from_alpha(Quantity q, int d, double alpha);
+double alpha_from_exponent(Quantity q, int d, double x);
 
 struct EnsembleFits {
   double alpha_theory = 0;
@@ -86,6 +100,11 @@ struct EnsembleFits {
   double anisotropy_slope = std::numeric_limits<double>::quiet_NaN();
   double anisotropy_slope_error = std::numeric_limits<double>::quiet_NaN();
   Window anisotropy_window;
+  // A of the same particles with their directions redrawn (sim/observables.h), the finite-N
+  // floor A -> 0 is judged against, and <N_t>, at the last sample.
+  double anisotropy_floor = std::numeric_limits<double>::quiet_NaN();
+  double anisotropy_floor_sem = std::numeric_limits<double>::quiet_NaN();
+  double active_last = std::numeric_limits<double>::quiet_NaN();
   // Means and standard errors over realisations of the snapshot scalars at the last snapshot
   // time, by kSnapshotScalars name.
   std::vector<double> last_scalars, last_scalars_sem;
@@ -98,7 +117,7 @@ struct EnsembleFits {
 
 EnsembleFits fit_ensemble(const EnsembleSums& sums, const FitOptions& options);
 
-// The exponent fit of `quantity` (e.g. "N_t"), or nullptr.
-const ExponentFit* find_exponent(const EnsembleFits& f, const std::string& quantity);
+// The exponent fit of `quantity`, or nullptr.
+const ExponentFit* find_exponent(const EnsembleFits& f, Quantity quantity);
 
 }  // namespace gs

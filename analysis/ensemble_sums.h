@@ -18,8 +18,8 @@ namespace gs {
 
 // The time-series columns kept per realisation for bootstrapping local slopes and fits, in the
 // order of EnsembleSums::Curves.
-inline constexpr std::array<const char*, 6> kCurveColumns = {
-    "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius"};
+inline constexpr std::array<const char*, 7> kCurveColumns = {
+    "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius", "radial_momentum"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
 inline constexpr std::array<const char*, 14> kSnapshotScalars = {
     "packing_typical",      "packing_upper",      "packing_mean",       "inner_correlation",

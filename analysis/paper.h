@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,34 +24,71 @@ inline constexpr double kFig1aPaperTimes[] = {5000, 10000, 20000, 50000};
 inline constexpr double kFig1bPaperTime = 25000;
 inline constexpr std::int64_t kFig1Particles = 250000;
 
-// One entry of the report's table and of summary.json "comparisons".
+// How a measured number is set against the paper's or the theory's.
+enum class Relation {
+  // |measured - theory| <= 2 sqrt(sigma_stat^2 + sigma_sys^2 + sigma_paper^2).
+  Equal,
+  // The theory's value lies in the measured 95% interval [ci_lo, ci_hi] (which need not be
+  // symmetric: the best-collapsing alpha).
+  Inside
+};
+
+// Where a comparison goes in the report.
+enum class Role {
+  Counted,      // a declared reading of a paper number: in the agree/disagree count
+  Sensitivity,  // another reading of a counted number (the sensitivity table)
+  Check,        // an identity or a relation the paper does not claim (v_rms^2 = 2E/N, the shock
+                // jump): shown with its z, not counted
+  Reported      // measured beside a theory the paper does not test (3D A(t), P_r): not counted
+};
+
+// One entry of the report's tables and of summary.json "comparisons".
 struct Comparison {
   std::string case_name;  // the ensemble it was measured on (two 3D elastic cases differ in size)
   std::string quantity;
+  // The fitted quantity whose exponent this row compares, if it is one.
+  std::optional<Quantity> exponent;
   int d = 0;
   double r = std::numeric_limits<double>::quiet_NaN();
   double measured = std::numeric_limits<double>::quiet_NaN();
-  double uncertainty = std::numeric_limits<double>::quiet_NaN();
+  // Standard deviation of the measurement over realisations (a 95% bootstrap interval's half
+  // width / 1.96, or a standard error).
+  double sigma_stat = std::numeric_limits<double>::quiet_NaN();
+  // The systematic of the reading's choices (the plateau windows' spread); NaN: none assessed.
+  double sigma_sys = std::numeric_limits<double>::quiet_NaN();
   double theory = std::numeric_limits<double>::quiet_NaN();
-  // equal: |measured - theory| <= max(uncertainty, tolerance); below: measured - uncertainty <
-  // theory; inside: ci_lo <= theory <= ci_hi (an interval that need not be symmetric).
-  std::string relation = "equal";
+  // The paper's number's own uncertainty: its quoted range read as 95% (0.78-0.82: 0.01), or
+  // the rounding of its last digit (uniform: half a unit / sqrt 3); 0 for a theory's exact value.
+  double sigma_paper = 0;
+  Relation relation = Relation::Equal;
   double ci_lo = std::numeric_limits<double>::quiet_NaN();
   double ci_hi = std::numeric_limits<double>::quiet_NaN();
-  // false: another reading of a paper number whose declared reading is counted; shown in the
-  // sensitivity table, not in the agree/disagree count.
-  bool counted = true;
-  double tolerance = 0;
+  Role role = Role::Counted;
   std::string source;  // where the theory value comes from
   std::string note;    // window, interval, or why nothing was measured
   std::string figure;  // the figure that shows it (e.g. the local slope beside an exponent)
   bool measured_ok() const { return std::isfinite(measured); }
+  bool counted() const { return role == Role::Counted; }
+  // sqrt(sigma_stat^2 + sigma_sys^2 + sigma_paper^2), the missing terms counting 0.
+  double sigma_total() const;
+  // (measured - theory) / sigma_stat; NaN without a statistical error.
+  double z() const;
   bool agrees() const;
 };
 
+// What the figures job knows of a case beyond its spec.
+struct CaseContext {
+  std::string name;          // the ensemble's folder name
+  std::string slope_figure;  // the local slopes' figure of the case
+  // The case of the paper's Figs. 4 and 5 (its smallest r): the collapse readings are made.
+  bool collapse = false;
+  // A 3D elastic case beside a larger one of the same physics: its exponents are sensitivity.
+  bool superseded = false;
+};
+
 // The comparisons of one ensemble (exponents, identities, A, band measures, shock jump, Q).
-std::vector<Comparison> case_comparisons(const std::string& case_name, const EnsembleSpec& spec,
-                                         const EnsembleFits& fits, const std::string& slope_figure);
+std::vector<Comparison> case_comparisons(const CaseContext& context, const EnsembleSpec& spec,
+                                         const EnsembleFits& fits);
 
 // A crossover time of one run with its bootstrap draws, for phi1 (control 1 - r^2) or phi2
 // (control delta).
@@ -125,9 +163,11 @@ Phi1Weighing weigh_phi1(int d, double phi, double ci_lo, double ci_hi);
 
 // The comparisons as a JSON array (summary.json of the figures job).
 Json comparisons_json(const std::vector<Comparison>& cmp);
-// The counted comparisons (the sensitivity readings go to sensitivity_markdown).
+// The tables of the report, one per role: the counted comparisons, the sensitivity readings, and
+// the checks and reported numbers (with their z, not counted).
 std::string comparisons_markdown(const std::vector<Comparison>& cmp);
 std::string sensitivity_markdown(const std::vector<Comparison>& cmp);
+std::string checks_markdown(const std::vector<Comparison>& cmp);
 // The report's first section: how many counted numbers, how many agree, which do not and why,
 // which could not be measured.
 std::string comparison_summary_markdown(const std::vector<Comparison>& cmp);

@@ -71,9 +71,16 @@ struct SnapshotMeasures {
 // the front_radius column are NaN (there is no band to have a front).
 inline constexpr double kFrontMinActive = 50;
 
+// The columns a realisation adds to the Recorder's, from the active particles at each sample
+// with N_t >= kFrontMinActive (NaN before): the front radius (analysis/band_measures.h), the
+// radial momentum P_r and A of the same particles with their directions redrawn, the finite-N
+// floor of an isotropic cloud (sim/observables.h).
+inline constexpr std::array<const char*, 3> kAddedColumns = {"front_radius", "radial_momentum",
+                                                             "anisotropy_isotropic"};
+
 struct Realisation {
   std::uint64_t index = 0;
-  // The columns of Recorder on the shared grid, then front_radius (analysis/band_measures.h).
+  // The columns of Recorder on the shared grid, then kAddedColumns.
   Table timeseries;
   std::vector<SnapshotMeasures> snapshots;  // one per spec snapshot time
 };

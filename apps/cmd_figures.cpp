@@ -47,6 +47,10 @@ void add_figures_flags(CLI::App& sub, FiguresFlags& flags) {
                "Add phi1 nearest the elastic limit: 2D and 3D r = 0.9 and 0.95 in the unbounded "
                "medium until E_t's local slope plateaus (3D r = 0.95 only to t = 4e5, E_0/20); "
                "see --limit --estimate for its time on 2 cores");
+  sub.add_flag("--snowplow", o.snowplow,
+               "Add the snowplow runs: 3D r = 0.1, 0.5 to t = 1.2e6 and 2D r = 0.1, 0.5 to t = 2e6 in "
+               "the unbounded medium, 20 realisations each, weighing alpha = 1/(d+1) against "
+               "2/(d+4) by R_t, N_t, E_t and P_r; hours on 2 cores: see --snowplow --estimate");
   sub.add_option("--limit-dim", o.limit_dim,
                  "With --limit, only the cases of this dimension (2: about 1.2 h on 2 cores)");
   sub.add_flag("--tiny", flags.tiny,

@@ -162,13 +162,12 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads, run_now);
     if (!c.delta_scan) {
-      auto more = case_comparisons(c.name, c.spec, cr.fits, slope_figure_of(c));
-      if (c.superseded_for_alpha)
+      const CaseContext context{c.name, slope_figure_of(c), c.collapse, c.superseded_for_alpha};
+      auto more = case_comparisons(context, c.spec, cr.fits);
+      // The snowplow runs answer their own question (the report's section), not the paper's.
+      if (c.role == CaseRole::Snowplow)
         for (auto& m : more)
-          if (m.quantity.starts_with("alpha from")) {
-            m.counted = false;
-            m.note = "superseded by d3_r1_large (the same physics in a larger box); " + m.note;
-          }
+          if (m.role == Role::Counted) m.role = Role::Reported;
       cmp.insert(cmp.end(), more.begin(), more.end());
     }
     results.push_back(std::move(cr));
@@ -306,7 +305,7 @@ bool estimate(const FiguresOptions& o, const FiguresPlan& plan, const fs::path& 
   md << "# Time estimate of `grainshock figures --" << to_string(plan.mode)
      << (o.long_3d ? " --long" : "") << (o.limit ? " --limit" : "")
      << (o.limit && o.limit_dim != 0 ? " --limit-dim " + std::to_string(o.limit_dim) : "")
-     << "`\n\n"
+     << (o.snowplow ? " --snowplow" : "") << "`\n\n"
      << "The whole job run with " << o.sample << " realisations per case on " << o.threads
      << " threads, each stage timed: a case's realisations scaled to the plan by M / " << o.sample
      << " in rounds of " << o.threads
@@ -353,7 +352,8 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     throw UsageError("--limit-dim must be 2 or 3");
   if (o.limit_dim != 0 && !o.limit) throw UsageError("--limit-dim needs --limit");
   if (o.resume && o.estimate) throw UsageError("an estimate cannot be resumed");
-  const FiguresPlan plan = figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim);
+  const FiguresPlan plan =
+      figures_plan(o.mode, o.seed, o.long_3d, o.limit, o.limit_dim, o.snowplow);
   FiguresResult out;
   if (o.resume) {
     out.dir = o.out;

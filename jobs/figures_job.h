@@ -22,6 +22,7 @@ struct FiguresOptions {
   bool long_3d = false;   // add the plan's Long3D cases
   bool limit = false;     // add the plan's Limit cases (r = 0.9, 0.95, unbounded medium)
   int limit_dim = 0;      // of that dimension only (2 or 3); 0: both
+  bool snowplow = false;  // add the plan's Snowplow cases
   bool estimate = false;  // only estimate the wall time, from `sample` realisations per case
   int sample = 2;
   std::string out = "grainshock-figures";

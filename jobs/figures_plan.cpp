@@ -192,6 +192,25 @@ std::vector<LimitCase> limit_cases(FiguresMode m) {
 }
 constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
 
+// --snowplow: 3D r = 0.1 and 0.5 to t = 1.2e6 and 2D r = 0.1 and 0.5 to t = 2e6 in the unbounded
+// medium, 20 realisations each, at the --limit cases' cutoffs (t_c2 stays far beyond t_max:
+// above). 3D to 1.2e6 gives the plateau rule (a decade at least, ending at the run's end) the
+// decade from 1.2e5 on, past where --long's 3D slopes at 1e6 were still rising; 2D to 2e6 a
+// decade and a half past --full's 1e5. Caps on made particles as --limit's r = 0.9 (r = 0.1
+// and 0.5 spread less far: alpha ~ 0.25-0.29 against 0.29-0.32). --estimate samples each to
+// t_max / 30 (3D) or / 3 (2D), as --limit does and for the same reasons.
+std::vector<LimitCase> snowplow_cases(FiguresMode m) {
+  if (m == FiguresMode::Tiny)  // smoke run: every file, no plateau
+    return {{3, 0.1, 100000, 0, 600, 3},
+            {3, 0.5, 100000, 0, 600, 3},
+            {2, 0.1, 50000, 0, 1500, 3},
+            {2, 0.5, 50000, 0, 1500, 3}};
+  return {{3, 0.1, 25000000, 1.2e5, 1.2e6, 20},
+          {3, 0.5, 25000000, 1.2e5, 1.2e6, 20},
+          {2, 0.1, 2000000, 2e5, 2e6, 20, 0, 1.0 / 3},
+          {2, 0.5, 2000000, 2e5, 2e6, 20, 0, 1.0 / 3}};
+}
+
 // The 3D elastic blast where its local slopes reach their plateau (d ln R / d ln t dips
 // to 0.32 near t = 1000 and recovers to 0.397 by 2e4 at N = 4e6, front inside half the box): its
 // own case, at N >= 4e6 to t = 2e4 in --full, and smaller in --quick, the plateau rule deciding.
@@ -262,7 +281,7 @@ const char* to_string(FiguresMode m) {
 }
 
 FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, bool limit,
-                         int limit_dim) {
+                         int limit_dim, bool snowplow) {
   FiguresPlan plan;
   plan.mode = mode;
   auto add = [&](const std::string& name, EnsembleSpec e, CaseRole role) {
@@ -276,7 +295,8 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
     plan.cases.push_back(std::move(c));
   };
   for (int d : {2, 3}) {
-    for (const RunSize& s : sizes_of(mode, d)) {
+    const auto sizes = sizes_of(mode, d);
+    for (const RunSize& s : sizes) {
       EnsembleSpec e;
       e.physics.dim = d;
       e.physics.particles = s.particles;
@@ -289,6 +309,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
       std::string name = "d";
       name.append(std::to_string(d)).append("_r").append(format_number(s.r));
       add(name, e, CaseRole::Paper);
+      plan.cases.back().collapse = &s == &sizes.front();  // the lists start at r = 0.1
     }
   }
   {
@@ -317,29 +338,33 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
       add(std::string("d3_r").append(format_number(s.r)).append("_long"), e, CaseRole::Long3D);
     }
   }
-  if (limit) {
-    for (const LimitCase& s : limit_cases(mode)) {
-      if (limit_dim != 0 && s.d != limit_dim) continue;
-      EnsembleSpec e;
-      e.physics.dim = s.d;
-      e.physics.medium = Medium::Unbounded;
-      e.physics.particles = s.cap;
-      e.physics.restitution = s.r;
-      e.physics.cutoff = s.d == 3 ? kLimitCutoff3D : kLimitCutoff2D;
-      e.physics.t_max = s.t_max;
-      e.realisations = s.realisations;
-      e.snapshot_times = collapse_times(s.d, s.t_max);
-      add(std::string("d")
-              .append(std::to_string(s.d))
-              .append("_r")
-              .append(format_number(s.r))
-              .append("_limit"),
-          e, CaseRole::Limit);
-      plan.cases.back().plateau_start = s.plateau_start;
-      plan.cases.back().estimate_t_max = s.t_max * s.estimate_fraction;
-      plan.cases.back().concurrent = s.concurrent;
-    }
-  }
+  // The cases of the unbounded medium (--limit, --snowplow), named d<d>_r<r>_<suffix>.
+  auto add_unbounded = [&](const LimitCase& s, CaseRole role, const char* suffix) {
+    EnsembleSpec e;
+    e.physics.dim = s.d;
+    e.physics.medium = Medium::Unbounded;
+    e.physics.particles = s.cap;
+    e.physics.restitution = s.r;
+    e.physics.cutoff = s.d == 3 ? kLimitCutoff3D : kLimitCutoff2D;
+    e.physics.t_max = s.t_max;
+    e.realisations = s.realisations;
+    e.snapshot_times = collapse_times(s.d, s.t_max);
+    add(std::string("d")
+            .append(std::to_string(s.d))
+            .append("_r")
+            .append(format_number(s.r))
+            .append("_")
+            .append(suffix),
+        e, role);
+    plan.cases.back().plateau_start = s.plateau_start;
+    plan.cases.back().estimate_t_max = s.t_max * s.estimate_fraction;
+    plan.cases.back().concurrent = s.concurrent;
+  };
+  if (limit)
+    for (const LimitCase& s : limit_cases(mode))
+      if (limit_dim == 0 || s.d == limit_dim) add_unbounded(s, CaseRole::Limit, "limit");
+  if (snowplow)
+    for (const LimitCase& s : snowplow_cases(mode)) add_unbounded(s, CaseRole::Snowplow, "snowplow");
   {
     const DeltaScan s = delta_scan_of(mode);
     for (double delta : s.cutoffs) {

@@ -22,7 +22,11 @@ enum class FiguresMode { Tiny, Quick, Full };
 // Limit (opt-in, `figures --limit`): 2D and 3D r = 0.9 and 0.95 in the unbounded
 // medium, run until E_t's local slope has plateaued; their t_c1 and energy curves join phi1's
 // readings between neighbouring r, in place of a paper case of the same (d, r).
-enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit };
+// Snowplow (opt-in, `figures --snowplow`): 3D and 2D r = 0.1 and 0.5 in the unbounded medium, run
+// long enough that the local slopes of R_t, N_t, E_t and P_r can tell the momentum-conserving
+// snowplow (alpha = 1/(d+1)) from the pressure-driven one (2/(d+4), analysis/snowplow.h); their
+// exponents are reported, not counted, and stay out of phi1.
+enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit, Snowplow };
 
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"
@@ -32,6 +36,9 @@ struct FigureCase {
   // The small 3D r = 1 case beside d3_r1_large: kept for Fig. 3, its alpha readings not counted
   // (its box is too small for the late elastic blast).
   bool superseded_for_alpha = false;
+  // The case of the paper's Figs. 4 and 5 (its smallest r in each dimension): the collapse of
+  // P(R,t) and P(v,t) is read on it.
+  bool collapse = false;
   // Limit: the time from which E_t's local slope is expected to be on its plateau (the plan's
   // comment says where each comes from); t_max lies at least half a decade past it, the span
   // the plateau rule needs (analysis/effective_exponent.h). 0: not run to its plateau (3D
@@ -67,7 +74,7 @@ const char* to_string(FiguresMode m);
 // like the rest of it, to a smoke run), of dimension limit_dim only if it is 2 or 3 (the 2D ones
 // take minutes, the 3D ones days).
 FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d = false,
-                         bool limit = false, int limit_dim = 0);
+                         bool limit = false, int limit_dim = 0, bool snowplow = false);
 
 // The case of dimension d and restitution r, or nullptr.
 const FigureCase* find_case(const FiguresPlan& plan, int d, double r);

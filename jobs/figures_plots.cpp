@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "analysis/quantile.h"
+#include "analysis/snowplow.h"
 #include "jobs/plot.h"
 #include "render/png.h"
 #include "render/renderer.h"
@@ -306,11 +307,11 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       t_start = ts.column("t")[i];
       break;
     }
-  std::string gp = gnuplot_preamble(base, 1500, 900);
+  std::string gp = gnuplot_preamble(base, 1900, 900);
   gp +=
       "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) + "]\n";
   gp +=
-      "set multiplot layout 2,3 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
+      "set multiplot layout 2,4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
       " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
       "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
@@ -427,6 +428,64 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
 
 // fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
 // beside the paper's 0.78-0.82 (r < 1) and ~0.47 (r = 1) and the edge-free measures.
+// The snowplow question in 3D (fig11_snowplow_3d): the local slopes of R_t, N_t, E_t and P_r
+// of every 3D r < 1 case against the two pictures' exponents, alpha = 1/4 (momentum-conserving
+// snowplow, dashed) and 2/7 (pressure-driven, dotted); one CSV per case beside the script.
+std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
+  const std::string base = "fig11_snowplow_3d";
+  const Quantity panels[] = {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
+                             Quantity::RadialMomentum};
+  std::vector<const CaseResult*> cases;
+  for (const auto& c : all)
+    if (c.plan->spec.physics.dim == 3 && !c.plan->spec.physics.elastic() && !c.plan->delta_scan)
+      cases.push_back(&c);
+  // From <N_t> >= 20 on, as the plateau search (earlier slopes are a handful of particles').
+  double t_start = std::numeric_limits<double>::infinity();
+  for (const CaseResult* c : cases) {
+    const Table ts = c->sums.timeseries();
+    for (std::size_t i = 0; i < ts.rows(); ++i)
+      if (ts.column("active")[i] >= 20) {
+        t_start = std::min(t_start, ts.column("t")[i]);
+        break;
+      }
+  }
+  std::string gp = gnuplot_preamble(base, 1400, 1000);
+  if (std::isfinite(t_start)) gp += "set xrange [" + format_double(t_start) + ":*]\n";
+  gp += "set multiplot layout 2,2 title 'Local slopes in 3D against the momentum-conserving "
+        "(alpha = 1/4, dashed) and pressure-driven (alpha = 2/7, dotted) snowplows'\n"
+        "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
+        "set key bottom right font ',8' samplen 2\n";
+  for (std::size_t q = 0; q < std::size(panels); ++q) {
+    const std::string name = quantity_name(panels[q]);
+    gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
+    std::string plot;
+    for (const CaseResult* c : cases) {
+      const ExponentFit* e = find_exponent(c->fits, panels[q]);
+      if (!e) continue;
+      const std::string csv = base + "_" + c->plan->name + ".csv";
+      if (q == 0) {
+        Table t;
+        t.add_column("t", e->slope.t);
+        for (Quantity p : panels) t.add_column(quantity_name(p), find_exponent(c->fits, p)->slope.slope);
+        write_csv(t, out.dir / csv);
+      }
+      plot += std::string(plot.empty() ? "plot " : ", ") + "'" + csv + "' skip 1 using 1:" +
+              std::to_string(q + 2) + " with lines lw 2 title '" + c->plan->name +
+              "' noenhanced";
+    }
+    char lines[200];
+    std::snprintf(lines, sizeof lines,
+                  "%s%.6g with lines lw 2 dt 2 lc rgb 'black' title '1/4', %.6g with lines lw 2 "
+                  "dt 3 lc rgb '#a00000' title '2/7'",
+                  plot.empty() ? "plot [1:10] " : ", ",
+                  exponent_from_alpha(panels[q], 3, momentum_conserving_alpha(3)),
+                  exponent_from_alpha(panels[q], 3, pressure_driven_alpha(3)));
+    gp += plot + lines + "\n";
+  }
+  gp += "unset multiplot\n";
+  return out.plot(base + ".gp", gp);
+}
+
 std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
   Table t;
   for (const char* n : {"r", "packing", "P"}) t.add_column(n, {});
@@ -575,12 +634,13 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
   check(fig3(results, out));
   for (const auto& c : results) {
     const auto& p = c.plan->spec.physics;
-    if (c.plan->role == CaseRole::Paper && p.restitution == 0.1)
+    if (c.plan->collapse)
       check(fig_collapse(c, out, p.dim == 2 ? "fig4_collapse_2d" : "fig5_collapse_3d",
                          p.dim == 2 ? 4 : 5));
     if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
   }
   check(fig_packing(results, out));
+  check(fig_snowplow(results, out));
   std::vector<CrossoverSet> tc1 = crossovers.tc1;
   tc1.insert(tc1.end(), crossovers.tc1_theory_b.begin(), crossovers.tc1_theory_b.end());
   check(fig_crossover_points(

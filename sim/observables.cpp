@@ -111,6 +111,66 @@ Shape measure_shape(const Snapshot& s) {
   return sh;
 }
 
+double radial_momentum(const Snapshot& s) {
+  const int d = checked_dim(s);
+  if (!s.has_velocity()) return 0;
+  std::size_t n = 0;
+  const Eigen::Vector3d c = centre_of_active(s, d, &n);
+  if (n == 0) return 0;
+  Eigen::Vector3d vc = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (is_active(s, i)) vc += project(s.velocity[i], d);
+  vc /= double(n);
+  double p = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!is_active(s, i)) continue;
+    const Eigen::Vector3d x = project(s.position[i], d) - c;
+    const double r = x.norm();
+    if (r > 0) p += (project(s.velocity[i], d) - vc).dot(x) / r;
+  }
+  return p;
+}
+
+double isotropic_anisotropy(const Snapshot& s, Rng& rng, int shuffles) {
+  const int d = checked_dim(s);
+  std::size_t n = 0;
+  const Eigen::Vector3d c = centre_of_active(s, d, &n);
+  if (n < 2 || d == 1 || shuffles < 1) return 0;
+  std::vector<double> r;
+  r.reserve(n);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
+  double sum = 0;
+  std::vector<Eigen::Vector3d> x(n);
+  for (int k = 0; k < shuffles; ++k) {
+    Eigen::Vector3d m = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      Eigen::Vector3d u = Eigen::Vector3d::Zero();
+      if (d == 2) {
+        const double phi = 2 * std::numbers::pi * rng.uniform();
+        u = {std::cos(phi), std::sin(phi), 0};
+      } else {
+        const double z = 2 * rng.uniform() - 1, phi = 2 * std::numbers::pi * rng.uniform();
+        const double rho = std::sqrt(std::max(0.0, 1 - z * z));
+        u = {rho * std::cos(phi), rho * std::sin(phi), z};
+      }
+      x[i] = r[i] * u;
+      m += x[i];
+    }
+    m /= double(n);
+    Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
+    for (const auto& xi : x) g += (xi - m) * (xi - m).transpose();
+    g /= double(n);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(g.topLeftCorner(d, d),
+                                                          Eigen::EigenvaluesOnly);
+    GS_CHECK(solver.info() == Eigen::Success);
+    Eigen::Vector3d l = Eigen::Vector3d::Zero();
+    for (int j = 0; j < d; ++j) l[j] = std::max(0.0, solver.eigenvalues()[d - 1 - j]);
+    sum += anisotropy_index(d, l);
+  }
+  return sum / shuffles;
+}
+
 double kinetic_energy(const Snapshot& s) {
   double e = 0;
   for (const auto& v : s.velocity) e += 0.5 * v.squaredNorm();

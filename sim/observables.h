@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim/histogram.h"
+#include "sim/rng.h"
 #include "sim/snapshot.h"
 
 namespace gs {
@@ -38,6 +39,19 @@ Shape measure_shape(const Snapshot& s);
 // 3D indices read the same way. 1D: 0. Defined as 0 when all eigenvalues vanish (fewer than two
 // distinct positions), where no shape exists.
 double anisotropy_index(int dim, const Eigen::Vector3d& eigenvalues);
+
+// The radial momentum of the active particles (unit masses), P_r = sum (v - V) . (x - c)/|x - c|
+// with c and V their centre of mass and its velocity (the kick's net drift ~ v0 / N_t taken out,
+// as in RadialProfile). A momentum-conserving snowplow keeps P_r ~ N_t R_t / t constant
+// (alpha = 1/(d+1)); a shell pushed by a hot core's pressure gains it. Particles at c count 0;
+// 0 without velocities.
+double radial_momentum(const Snapshot& s);
+
+// A(t) of the active particles with every direction about their centre of mass redrawn uniformly
+// (distances kept), averaged over `shuffles` draws: what an isotropic cloud of the same N and
+// radial distribution reads. A of N points is not 0 even when their law is isotropic (~1/N,
+// times a factor set by the radial distribution), so A -> 0 is judged against this floor.
+double isotropic_anisotropy(const Snapshot& s, Rng& rng, int shuffles = 4);
 
 // E_t: the kinetic energy of every particle (unit masses); 0 for a snapshot without velocities.
 double kinetic_energy(const Snapshot& s);

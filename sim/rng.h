@@ -17,7 +17,8 @@ enum class Stream : std::uint64_t {
   Velocities = 2,
   Kick = 3,
   Bootstrap = 4,
-  Medium = 5  // the unbounded medium: one stream per cell, keyed further by the cell's coordinates
+  Medium = 5,  // the unbounded medium: one stream per cell, keyed further by the cell's coordinates
+  Shuffle = 6  // directions redrawn for the anisotropy of an isotropic cloud, keyed by the sample
 };
 
 class Rng {

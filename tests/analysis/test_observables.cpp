@@ -76,6 +76,66 @@ TEST(Observables, AnisotropyZeroForRingAndShell) {
   EXPECT_NEAR(sh.eigenvalues[2], 1.0 / 3.0, 1e-14);
 }
 
+TEST(Observables, RadialMomentumOfAHandMadeConfiguration) {
+  // Three particles at (0,0), (4,0), (2,6): centre of mass (2,2). Directions u_i from it:
+  // (-1,-1)/sqrt2, (1,-1)/sqrt2, (0,1), summing to w = (0, 1 - sqrt2). Each moves outward at
+  // speed 1 plus a common drift (1,1): V = drift + w/3, so v_i - V = u_i - w/3 and
+  // P_r = 3 - w.w/3 = 3 - (1 - sqrt2)^2/3 = 2.94281. In the lab frame the drift would add
+  // (1,1).w = 1 - sqrt2 instead (2.58579).
+  Snapshot s = make_snapshot(2);
+  const Eigen::Vector3d drift(1, 1, 0);
+  const double h = 1 / std::sqrt(2.0);
+  add(s, {0, 0, 0}, drift + Eigen::Vector3d(-h, -h, 0));
+  add(s, {4, 0, 0}, drift + Eigen::Vector3d(h, -h, 0));
+  add(s, {2, 6, 0}, drift + Eigen::Vector3d(0, 1, 0));
+  add(s, {50, 50, 0}, {9, 9, 0}, false);  // at rest in the count: not active, ignored
+  // Tolerance: three terms of size 1, round-off only.
+  const double w2 = (1 - std::sqrt(2.0)) * (1 - std::sqrt(2.0));
+  EXPECT_NEAR(radial_momentum(s), 3 - w2 / 3, 1e-12);
+  // Moving inward instead: the opposite. The drift alone: 0.
+  Snapshot in = s, still = s;
+  for (std::size_t i = 0; i < 3; ++i) {
+    in.velocity[i] = drift - (s.velocity[i] - drift);
+    still.velocity[i] = drift;
+  }
+  EXPECT_NEAR(radial_momentum(in), -(3 - w2 / 3), 1e-12);
+  EXPECT_NEAR(radial_momentum(still), 0, 1e-12);
+  // 3D: a particle on each axis moving out at 2: P_r = 6 x 2.
+  Snapshot b = make_snapshot(3);
+  for (int k = 0; k < 3; ++k)
+    for (const double sign : {-1.0, 1.0}) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      x[k] = 5 * sign;
+      add(b, x, 2 * x / 5);
+    }
+  EXPECT_NEAR(radial_momentum(b), 12, 1e-12);
+}
+
+TEST(Observables, IsotropicAnisotropyIsTheFiniteNFloor) {
+  // N points on a ring (2D) or sphere (3D) with uniform directions: A = 2 tr(G'^2) / tr(G)^2
+  // (G' the traceless part) has mean (1/N) x E tr((u u^T - I/d)^2) x d/(d-1)... worked for both:
+  // 2D: ((l1-l2)/(l1+l2))^2 = |sum e^(2i theta)|^2 / N^2, mean 1/N; 3D: kappa^2 = (3/2)
+  // tr(G'^2) / tr(G)^2, mean (3/2)(2/3)/N = 1/N. The centre's own scatter changes that by
+  // O(1/N^2). So A N -> 1 whatever the input's shape: a straight line (A = 1) reads ~1/N too.
+  for (int d : {2, 3}) {
+    Snapshot line = make_snapshot(d);
+    const int n = 400;
+    for (int i = 0; i < n; ++i) add(line, {double(i) - n / 2.0, 0, 0});
+    // Fold every point to the same distance from the centre: a ring or shell once shuffled.
+    for (auto& x : line.position) x = {x[0] >= 0 ? 10.0 : -10.0, 0, 0};
+    EXPECT_GT(measure_shape(line).anisotropy, 0.99);  // the line itself
+    Rng rng(3, 0, Stream::Shuffle);
+    // 400 draws: A N per draw is ~exponential (2D) with standard deviation ~1, so the mean
+    // of 400 is 1 +- 0.05; 0.2 is 4 standard errors.
+    const double a = isotropic_anisotropy(line, rng, 400);
+    EXPECT_NEAR(a * n, 1, 0.2) << "d = " << d;
+  }
+  Snapshot one = make_snapshot(2);
+  add(one, {1, 2, 0});
+  Rng rng(1, 0, Stream::Shuffle);
+  EXPECT_EQ(isotropic_anisotropy(one, rng), 0);  // no shape of one point
+}
+
 TEST(Observables, AnisotropyNearOneForThinLine) {
   for (int dim : {2, 3}) {
     Snapshot s = make_snapshot(dim);

@@ -46,15 +46,23 @@ TEST(AlphaFromExponent, InvertsEachScalingLaw) {
   // The theory's exponents of each quantity give the theory's alpha back, in 2D and 3D.
   for (int d : {2, 3}) {
     const double a = 1.0 / (d + 1);
-    EXPECT_NEAR(alpha_from_exponent("N_t", d, a * d), a, 1e-15);
-    EXPECT_NEAR(alpha_from_exponent("E_t", d, a * d + 2 * a - 2), a, 1e-15);
-    EXPECT_NEAR(alpha_from_exponent("R_t", d, a), a, 1e-15);
-    EXPECT_NEAR(alpha_from_exponent("R_front", d, a), a, 1e-15);
-    EXPECT_NEAR(alpha_from_exponent("dR_front/dt", d, a - 1), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent(Quantity::ActiveCount, d, a * d), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent(Quantity::Energy, d, a * d + 2 * a - 2), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent(Quantity::RadiusRms, d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent(Quantity::FrontRadius, d, a), a, 1e-15);
+    EXPECT_NEAR(alpha_from_exponent(Quantity::RadialSpeed, d, a - 1), a, 1e-15);
+    // P_r ~ N_t R_t / t: constant in the momentum-conserving snowplow.
+    EXPECT_NEAR(exponent_from_alpha(Quantity::RadialMomentum, d, a), 0, 1e-15);
+    for (Quantity q : {Quantity::ActiveCount, Quantity::Energy, Quantity::RadiusRms,
+                       Quantity::RadialMomentum, Quantity::RadialSpeed})
+      EXPECT_NEAR(alpha_from_exponent(q, d, exponent_from_alpha(q, d, 0.3)), 0.3, 1e-15);
   }
+  // The pressure-driven snowplow's 2/7 in 3D gives P_r ~ t^(1/7), E_t ~ t^(-4/7).
+  EXPECT_NEAR(exponent_from_alpha(Quantity::RadialMomentum, 3, 2.0 / 7), 1.0 / 7, 1e-15);
+  EXPECT_NEAR(exponent_from_alpha(Quantity::Energy, 3, 2.0 / 7), -4.0 / 7, 1e-15);
   // E_t of the elastic blast: alpha = 2/(d+2) conserves energy (exponent 0).
-  EXPECT_NEAR(alpha_from_exponent("E_t", 2, 0), 0.5, 1e-15);
-  EXPECT_TRUE(std::isnan(alpha_from_exponent("C_t", 2, 1.5)));  // no alpha of its own
+  EXPECT_NEAR(alpha_from_exponent(Quantity::Energy, 2, 0), 0.5, 1e-15);
+  EXPECT_TRUE(std::isnan(alpha_from_exponent(Quantity::Collisions, 2, 1.5)));  // no alpha
 }
 
 TEST(EffectiveExponent, FindsThePlateauOfACorrectionToScaling) {
@@ -158,11 +166,17 @@ TEST(EffectiveExponent, SlopeClimbingAcrossACrossoverGivesAWindowEndingBeforeIt)
   PlateauOptions loose;
   loose.z = 30;
   EXPECT_GT(find_plateau(band, loose).window.t_hi, tc);
-  // For an asymptotic exponent that window is a transient: the slope leaves it and drifts on for
-  // most of a decade, so the fits' rule (asymptotic_plateau) says there is no plateau and why.
+  // For an asymptotic exponent that window is a transient: its slope is off the last decade's
+  // and the slope drifts on, so the fits' rule (asymptotic_plateau) says there is no plateau.
   const Plateau late = find_plateau(band, asymptotic_plateau());
   EXPECT_FALSE(late.found);
-  EXPECT_NE(late.note.find("transient"), std::string::npos) << late.note;
+  EXPECT_NE(late.note.find("no plateau within the run"), std::string::npos) << late.note;
+  // Without the last decade's test the early window is found, and named a transient.
+  PlateauOptions no_reference = asymptotic_plateau();
+  no_reference.reference_decades = 0;
+  const Plateau transient = find_plateau(band, no_reference);
+  EXPECT_FALSE(transient.found);
+  EXPECT_NE(transient.note.find("transient"), std::string::npos) << transient.note;
   // A flat slope to the end still passes it.
   const auto flat = ensemble_of(
       t, [](double s) { return std::pow(s, 2.0 / 3.0); }, 20, 13, 0.005);
@@ -480,7 +494,7 @@ TEST(CrossoverExponents, LocalPhi1BetweenNeighbouringRFollowsADrift) {
   const Comparison c = phi1_elastic_limit_comparison(3, local);
   EXPECT_NEAR(c.measured, 2.5, 1e-12);
   EXPECT_NE(c.note.find(local.back().from), std::string::npos) << c.note;
-  EXPECT_NEAR(c.uncertainty, 0.5 * (local.back().ci_hi - local.back().ci_lo), 1e-12);
+  EXPECT_NEAR(c.sigma_stat, 0.5 * (local.back().ci_hi - local.back().ci_lo) / 1.959964, 1e-12);
   EXPECT_FALSE(phi1_elastic_limit_comparison(3, {}).measured_ok());
 }
 
@@ -540,13 +554,13 @@ TEST(CrossoverExponents, DeclaredPhi1IsTheCollapseOfThePairNearestTheLimit) {
       reading("r = 0.7", "r = 0.8", nan, 1.5), reading("r = 0.7", "r = 0.8", 0.1, 1.6),
       reading("r = 0.8", "r = 0.9", nan, 2.3), reading("r = 0.8", "r = 0.9", 0.1, nan)};
   const Comparison c = phi1_energy_comparison(2, readings, nan);
-  EXPECT_TRUE(c.counted);
+  EXPECT_TRUE(c.counted());
   EXPECT_DOUBLE_EQ(c.measured, 2.3);  // the last pair, not the first
-  EXPECT_NEAR(c.uncertainty, 0.1, 1e-12);
-  EXPECT_TRUE(c.agrees());  // 2.25 within the tolerance
+  EXPECT_NEAR(c.sigma_stat, 0.1 / 1.959964, 1e-12);
+  EXPECT_TRUE(c.agrees());  // 2.25 within 2 sigma (0.05 against 2 x 0.051)
   // A level the last pair does not reach falls back to the nearest pair that does.
   const Comparison l = phi1_energy_comparison(2, readings, 0.1);
-  EXPECT_FALSE(l.counted);
+  EXPECT_FALSE(l.counted());
   EXPECT_DOUBLE_EQ(l.measured, 1.6);
   EXPECT_NE(l.note.find("r = 0.7"), std::string::npos);
   // 3D's 3.0 is not 2.3: a wrong phi1 disagrees.

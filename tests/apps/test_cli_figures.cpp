@@ -68,6 +68,10 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     EXPECT_NE(gp.find(b + ".csv"), std::string::npos) << b;
     EXPECT_NE(gp.find(b + ".png"), std::string::npos) << b;
   }
+  // The snowplow figure, from one CSV per 3D r < 1 case, and its section of the report.
+  EXPECT_TRUE(is_png(dir / "fig11_snowplow_3d.png"));
+  EXPECT_TRUE(fs::exists(dir / "fig11_snowplow_3d_d3_r0.1.csv"));
+  EXPECT_NE(read_file(dir / "report.md").find("## The snowplow question"), std::string::npos);
   // Greek letters as symbols, not words.
   EXPECT_NE(read_file(dir / "fig4_collapse_2d.gp").find("α"), std::string::npos);
   EXPECT_EQ(read_file(dir / "fig4_collapse_2d.gp").find("alpha"), std::string::npos);
@@ -77,14 +81,17 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
 
   const std::string summary = read_file(dir / "summary.json");
   ASSERT_NE(summary.find("\"comparisons\""), std::string::npos);
-  for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"uncertainty\"",
-                          "\"theory\"", "\"agrees\"", "\"wall_seconds\"", "\"figure\""})
+  for (const char* key : {"\"quantity\"", "\"d\"", "\"r\"", "\"measured\"", "\"sigma_stat\"",
+                          "\"sigma_sys\"", "\"z\"", "\"role\"", "\"theory\"", "\"agrees\"",
+                          "\"wall_seconds\"", "\"figure\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  for (const char* q : {"alpha from R_t",
-                        "alpha from N_t",
-                        "alpha from R_front",
-                        "alpha from dR_front/dt",
-                        "collision exponent",
+  for (const char* q : {"exponent of R_t",
+                        "exponent of N_t",
+                        "exponent of E_t",
+                        "exponent of R_front",
+                        "exponent of P_r",
+                        "exponent of P_r/N_t",
+                        "exponent of C_t",
                         "v_rms^2 = 2E/N (identity)",
                         "phi1",
                         "phi2",
@@ -98,16 +105,14 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
                         "band packing (local, 90% quantile)",
                         "band number density (shell peak, no pi/4)",
                         "shell peak density / ambient",
-                        "A(t_max)",
-                        "alpha from E_t, with a correction to scaling",
-                        "alpha from R_t, with a correction to scaling"})
+                        "A(t_max) -> 0: against an isotropic cloud's (angle-shuffled)"})
     EXPECT_NE(summary.find(std::string("\"") + q + "\""), std::string::npos) << q;
   // One reading per number: the small d3_r1's alpha rows are superseded by d3_r1_large's and
   // not counted; t_c2 is a crossover only where the delta scan puts it inside the run.
   const Json j = Json::parse(summary);
   int superseded = 0, large = 0;
   for (const Json& c : j.at("comparisons")) {
-    if (!c.at("quantity").get<std::string>().starts_with("alpha from")) continue;
+    if (!c.at("quantity").get<std::string>().starts_with("exponent of")) continue;
     if (c.at("case") == "d3_r1") {
       EXPECT_FALSE(c.at("counted").get<bool>()) << c.dump();
       ++superseded;
@@ -156,10 +161,11 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
 
   const std::string report = read_file(dir / "report.md");
   EXPECT_TRUE(names_only_existing_files(report, dir)) << "report.md";
-  for (const char* q : {"alpha from R_t", "phi1", "band packing", "Definitions", "declared reading",
+  for (const char* q : {"exponent of R_t", "phi1", "band packing", "Definitions", "declared reading",
                         "Rankine-Hugoniot", "fig8_local_slopes_d2_r0.1.png", "## Summary",
                         "numbers compared", "Sensitivity", "Plateaus and their drift",
-                        "corrected b", "The offset of E_t and R_t from alpha = 1/3 in 2D"})
+                        "corrected b", "Checks and reported numbers", "The snowplow question",
+                        "agree within 2 sigma"})
     EXPECT_NE(report.find(q), std::string::npos) << q;
 }
 

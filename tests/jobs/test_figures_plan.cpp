@@ -171,6 +171,36 @@ TEST(FiguresPlan, LimitCasesAreUnboundedPastTheirPlateauAndFitInMemory) {
   }
 }
 
+TEST(FiguresPlan, SnowplowCasesAreOptInUnboundedAndLongEnoughForADecadeOfPlateau) {
+  // 3D r = 0.1 and 0.5 to 1.2e6 and 2D r = 0.1 and 0.5 to 2e6 in the unbounded medium, 20
+  // realisations each; each at least a decade past the plateau start it expects (the plateau
+  // rule's shortest window), fitting in 24 GB two at a time, with t_c2 far beyond t_max.
+  for (FiguresMode m : {FiguresMode::Quick, FiguresMode::Full}) {
+    EXPECT_TRUE(of_role(figures_plan(m, 1), CaseRole::Snowplow).empty());
+    const FiguresPlan plan = figures_plan(m, 1, false, false, 0, true);
+    const auto cases = of_role(plan, CaseRole::Snowplow);
+    ASSERT_EQ(cases.size(), 4u);
+    std::set<std::pair<int, double>> seen;
+    for (const FigureCase* c : cases) {
+      const PhysicsConfig& p = c->spec.physics;
+      seen.insert({p.dim, p.restitution});
+      EXPECT_TRUE(p.unbounded()) << c->name;
+      EXPECT_EQ(c->spec.realisations, 20u) << c->name;
+      EXPECT_EQ(p.t_max, p.dim == 3 ? 1.2e6 : 2e6) << c->name;
+      EXPECT_GE(std::log10(p.t_max / c->plateau_start), 1 - 1e-9) << c->name;
+      EXPECT_LE(c->threads_of(2) * estimated_bytes(p, 1), 24e9) << c->name;
+      EXPECT_GT(c->estimate_t_max, 0) << c->name;
+      EXPECT_LT(c->estimate_t_max, p.t_max) << c->name;
+      EXPECT_NE(c->name.find("_snowplow"), std::string::npos) << c->name;
+      if (p.dim == 2)
+        EXPECT_GE(2.2e4 * std::pow(5e-4 / p.cutoff, 1.5), 10 * p.t_max) << c->name;
+      else
+        EXPECT_GE(3e4 * std::pow(1e-4 / p.cutoff, 4.0 / 3), 10 * p.t_max) << c->name;
+    }
+    EXPECT_EQ(seen, (std::set<std::pair<int, double>>{{2, 0.1}, {2, 0.5}, {3, 0.1}, {3, 0.5}}));
+  }
+}
+
 TEST(FiguresPlan, Fig1IsAtThePapersTimesInThePapersBox) {
   // The paper's Fig. 1: r = 0.1 at t = 5000, 10000, 20000, 50000 and r = 1 at 25000 in its time
   // unit, 2.5e5 discs at n = 0.25 (the kick at (500, 500) of a box of side 1000).

@@ -1,0 +1,76 @@
+#include "analysis/snowplow.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs {
+namespace {
+
+// 99.7% quantiles of chi^2 with k = 1..4 degrees of freedom (the level of a 3 sigma deviation).
+constexpr double kChi2Excluded[5] = {0, 8.807, 11.618, 14.156, 16.527};
+constexpr double kZ95 = 1.959964;
+
+double sigma_of(const ExponentFit& e) {
+  const double stat = e.fit.confidence > 0 ? 0.5 * (e.fit.ci_hi - e.fit.ci_lo) / kZ95
+                                           : e.fit.standard_error;
+  const double sys = std::isfinite(e.window_systematic) ? e.window_systematic : 0;
+  return std::sqrt(stat * stat + sys * sys);
+}
+
+std::string strength_of(double odds) {
+  return odds < 3 ? "not worth more than a bare mention"
+         : odds < 20  ? "positive"
+         : odds < 150 ? "strong"
+                      : "very strong";
+}
+
+}  // namespace
+
+SnowplowVerdict weigh_snowplow(int d, const EnsembleFits& fits) {
+  SnowplowVerdict v;
+  v.d = d;
+  double chi_m = 0, chi_p = 0;
+  for (Quantity q : {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
+                     Quantity::RadialMomentum}) {
+    SnowplowReading r;
+    r.quantity = q;
+    if (const ExponentFit* e = find_exponent(fits, q); e && std::isfinite(e->fit.exponent)) {
+      r.exponent = e->fit.exponent;
+      r.sigma = sigma_of(*e);
+      if (r.sigma > 0) {
+        r.z_momentum = (r.exponent - exponent_from_alpha(q, d, momentum_conserving_alpha(d))) /
+                       r.sigma;
+        r.z_pressure = (r.exponent - exponent_from_alpha(q, d, pressure_driven_alpha(d))) /
+                       r.sigma;
+        chi_m += r.z_momentum * r.z_momentum;
+        chi_p += r.z_pressure * r.z_pressure;
+        ++v.used;
+      }
+    }
+    v.readings.push_back(r);
+  }
+  if (v.used == 0) {
+    v.favoured = "no readings";
+    v.strength = "no plateau within the run";
+    return v;
+  }
+  v.chi2_momentum = chi_m;
+  v.chi2_pressure = chi_p;
+  if (d == 2) {
+    v.favoured = "both (the same alpha in 2D)";
+    v.strength = chi_m > kChi2Excluded[v.used] ? "the data exclude it" : "";
+    return v;
+  }
+  const double near = std::min(chi_m, chi_p), far = std::max(chi_m, chi_p);
+  v.odds = std::exp(0.5 * (far - near));
+  if (near > kChi2Excluded[v.used]) {
+    v.favoured = "neither";
+    v.strength = "both excluded";
+    return v;
+  }
+  v.favoured = chi_m <= chi_p ? "momentum-conserving" : "pressure-driven";
+  v.strength = strength_of(v.odds);
+  return v;
+}
+
+}  // namespace gs
