@@ -232,6 +232,11 @@ void bind_render(pb::module_& m) {
       [](const pb::object& expected, const pb::object& actual, int tolerance, long max_blob_pixels,
          long max_blob_mass) {
         const render::Image e = image_of(expected), a = image_of(actual);
+        // As `grainshock compare` (exit 2): pictures of different sizes cannot be compared.
+        if (e.width != a.width || e.height != a.height)
+          throw UserError("pictures of different sizes cannot be compared: " +
+                          std::to_string(e.width) + "x" + std::to_string(e.height) + " and " +
+                          std::to_string(a.width) + "x" + std::to_string(a.height));
         const render::CompareOptions o{tolerance, max_blob_pixels, max_blob_mass};
         Comparison c;
         pb::gil_scoped_release release;

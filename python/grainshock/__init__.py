@@ -38,8 +38,24 @@ def render(snapshots, *, color_by="auto", width=1920, height=1080, inset=None, *
     ("light"/"dark"), scale ("auto"/"lin"/"log"), range (MIN, MAX), percentiles (LOW, HIGH),
     range_per_frame, framing ("fit"/"box"), centre, zoom, azimuth, elevation, distance, fov,
     slab, clip, show_inactive, colorbar, time_label, legend, scale_bar, msaa, font, backend.
+    snapshots may also be a path of a snapshot file (or a list of them): its last frame is
+    drawn, as grainshock.read and `grainshock render` take it.
     Returns an Image (.array, .save(path); a notebook shows it).
     """
+    import os
+
+    def snapshot_of(s):
+        if isinstance(s, (str, os.PathLike)):
+            return read(os.fspath(s))
+        if not isinstance(s, Snapshot):
+            raise TypeError(f"render() takes a Snapshot, a path of a snapshot file or a list of "
+                            f"them, not {type(s).__name__}")
+        return s
+
+    if isinstance(snapshots, (list, tuple)):
+        snapshots = [snapshot_of(s) for s in snapshots]
+    else:
+        snapshots = snapshot_of(snapshots)
     return _c._render(snapshots, color_by=color_by, width=width, height=height, inset=inset,
                       **options)
 
@@ -175,6 +191,11 @@ def from_ase(atoms, *, dim=None, time=None):
     import numpy as np
 
     positions = atoms.get_positions()
+    cell = atoms.get_cell().array
+    if atoms.cell.rank and np.any(cell - np.diag(np.diag(cell))):
+        # As the file readers: the box is rectangular, a diagonal alone would move particles.
+        raise ValueError("the cell is triclinic (non-zero tilt); only rectangular boxes are "
+                         "supported")
     if dim is None:
         dim = int(atoms.info.get("dim", 2 if np.all(positions[:, 2] == 0) else 3))
     velocities = atoms.get_velocities() if atoms.has("momenta") else None

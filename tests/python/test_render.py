@@ -71,3 +71,21 @@ def test_compare_tells_alike_from_different(snapshot_file):
     assert diff.diff.array.shape == a.array.shape
     other = gs.render(snap, width=320, height=240, color_by="first-collision")
     assert not gs.compare(a, other).alike
+
+
+def test_render_takes_a_path_or_says_what_it_takes(snapshot_file):
+    by_path = gs.render(snapshot_file, width=320, height=240)
+    by_str = gs.render([str(snapshot_file)], width=320, height=240)
+    by_snapshot = gs.render(gs.read(snapshot_file), width=320, height=240)
+    np.testing.assert_array_equal(by_path.rgba, by_snapshot.rgba)
+    np.testing.assert_array_equal(by_str.rgba, by_snapshot.rgba)
+    with pytest.raises(TypeError, match="a Snapshot, a path"):
+        gs.render(42)
+
+
+def test_compare_of_different_sizes_is_a_value_error(snapshot_file):
+    # As `grainshock compare`, which exits 2: no verdict on pictures of different sizes.
+    a = gs.render(gs.read(snapshot_file), width=320, height=240)
+    b = gs.render(gs.read(snapshot_file), width=240, height=320)
+    with pytest.raises(ValueError, match="different sizes"):
+        gs.compare(a, b)

@@ -114,3 +114,13 @@ def test_ase_round_trip(small_sim):
     assert back.dim == 2 and back.time == snap.time
     np.testing.assert_allclose(back.positions, snap.positions)
     np.testing.assert_allclose(back.velocities, snap.velocities)
+
+
+def test_from_ase_refuses_a_triclinic_cell_as_the_readers_do():
+    ase = pytest.importorskip("ase", reason="python3-ase is not installed")
+    atoms = ase.Atoms("Ar2", positions=[[1, 1, 1], [3, 3, 3]],
+                      cell=[[10, 0, 0], [2, 10, 0], [0, 0, 10]], pbc=True)
+    with pytest.raises(ValueError, match="triclinic"):
+        gs.from_ase(atoms)
+    atoms.set_cell([10, 10, 10])
+    assert gs.from_ase(atoms).box.tolist() == [10, 10, 10]

@@ -193,6 +193,12 @@ TEST(RenderFiles, SpeciesOfAnXyzFileAreItsColours) {
        p = r.err.find("coloured by particle type", p + 1))
     ++said;
   EXPECT_EQ(said, 1u) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  // Discs under a pixel of radius are warned of: a one-particle change is below what shows.
+  const auto tiny = render(asset("species_2d.extxyz") + " --dim 2 --framing box --width 40 --height 30 --out " +
+                           (dir / "tiny.png").string());
+  ASSERT_EQ(tiny.exit_code, 0) << tiny.err;
+  EXPECT_NE(tiny.err.find("warning: discs of 0."), std::string::npos) << tiny.err;
   const Image img = read_png(png.string());
   for (std::size_t k = 0; k < 3; ++k) {
     const Rgb8 c = overlay_colour(k);
