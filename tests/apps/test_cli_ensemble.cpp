@@ -321,6 +321,9 @@ TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   while (finished_count(stopped / "realisations") == 0 &&
          std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  // Past the next realisation's set-up (random sequential addition, 0.05 s), which a stop ends
+  // with no state to keep, into its run of about 2 s.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(pid, SIGINT);
   int status = 0;
   ::waitpid(pid, &status, 0);
