@@ -42,8 +42,6 @@ struct PhysicsConfig {
   bool elastic() const { return restitution >= 1.0; }
   // Sticky coalescence: the exact 1D r = 0 limit of the paper.
   bool sticky() const { return dim == 1 && restitution == 0.0; }
-  // Collisions conserve energy (restitution is at most 1, so this is r = 1).
-  bool elastic() const { return restitution >= 1; }
 };
 
 // Throws UserError naming the offending input (flag name) if the configuration is impossible.
