@@ -238,45 +238,55 @@ void UnboundedMedium<D>::gather(const Cell& lo, const Cell& hi) {
   if (stencil_valid_ && lo == stencil_lo_ && hi == stencil_hi_) return;
   // The cells span one block or two along each axis (at most 3 cells of blocks 4 or more wide):
   // each of those blocks is found (drawn if need be) once, before any offset is read, since
-  // drawing grows the pool and the offsets.
+  // drawing grows the pool and the offsets. They are numbered by a bit per axis, set for the
+  // upper one.
   Cell first, last;
   for (int k = 0; k < D; ++k) first[k] = lo[k] >> kShift, last[k] = hi[k] >> kShift;
-  std::array<Block, 1 << D> blocks;
+  std::array<Block, 1 << D> blocks{};
   for (int m = 0; m < (1 << D); ++m) {
     Cell b;
     bool used = true;
     for (int k = 0; k < D; ++k) {
-      const bool upper = (m >> k) & 1;
-      used = used && (!upper || last[k] != first[k]);
-      b[k] = upper ? last[k] : first[k];
+      used = used && (!((m >> k) & 1) || last[k] != first[k]);
+      b[k] = (m >> k) & 1 ? last[k] : first[k];
     }
     if (used) blocks[static_cast<std::size_t>(m)] = block(b);
   }
-  // A row of cells along x within one block is consecutive in it: one range holds its
-  // candidates.
+  // What each coordinate adds to a cell's place: its block's bit and its index in the block. A
+  // row along x within one block is consecutive in it: one range holds its candidates.
+  int bits[D][3], locals[D][3], counts[D];
+  for (int k = 1; k < D; ++k) {
+    counts[k] = static_cast<int>(hi[k] - lo[k] + 1);
+    for (int a = 0; a < counts[k]; ++a) {
+      const std::int64_t c = lo[k] + a;
+      bits[k][a] = static_cast<int>((c >> kShift) != first[k]) << k;
+      locals[k][a] = static_cast<int>(c & (kBlock - 1)) << (kShift * k);
+    }
+  }
+  int seg_bit[2], seg_local[2], seg_cells[2], segs = 0;
+  for (std::int64_t x = lo[0]; x <= hi[0]; ++segs) {
+    const bool upper = (x >> kShift) != first[0];
+    const std::int64_t end = upper ? hi[0] : std::min(hi[0], (first[0] + 1) * kBlock - 1);
+    seg_bit[segs] = upper;
+    seg_local[segs] = static_cast<int>(x & (kBlock - 1));
+    seg_cells[segs] = static_cast<int>(end - x + 1);
+    x = end + 1;
+  }
   int n = 0;
-  Cell c = lo;
+  int at[D] = {};
   for (;;) {
     int m = 0, local = 0;
-    for (int k = D - 1; k > 0; --k) {
-      m |= static_cast<int>((c[k] >> kShift) != first[k]) << k;
-      local = (local << kShift) | static_cast<int>(c[k] & (kBlock - 1));
-    }
-    for (std::int64_t x = lo[0]; x <= hi[0];) {
-      const bool upper = (x >> kShift) != first[0];
-      const std::int64_t end = upper ? hi[0] : std::min(hi[0], (first[0] + 1) * kBlock - 1);
-      const Block& b = blocks[static_cast<std::size_t>(m | static_cast<int>(upper))];
+    for (int k = 1; k < D; ++k) m |= bits[k][at[k]], local |= locals[k][at[k]];
+    for (int g = 0; g < segs; ++g) {
+      const Block& b = blocks[static_cast<std::size_t>(m | seg_bit[g])];
       const std::uint32_t* o =
-          &offsets_[b.first_offset + static_cast<std::uint32_t>(
-                                         (local << kShift) | static_cast<int>(x & (kBlock - 1)))];
-      const auto cells = static_cast<std::size_t>(end - x + 1);
-      stencil_[static_cast<std::size_t>(n++)] = {b.first_candidate + o[0], o[cells] - o[0]};
-      x = end + 1;
+          &offsets_[b.first_offset + static_cast<std::uint32_t>(local | seg_local[g])];
+      stencil_[static_cast<std::size_t>(n++)] = {b.first_candidate + o[0], o[seg_cells[g]] - o[0]};
     }
     int k = 1;
-    while (k < D && c[k] == hi[k]) c[k] = lo[k], ++k;
+    while (k < D && at[k] == counts[k] - 1) at[k] = 0, ++k;
     if (k >= D) break;
-    ++c[k];
+    ++at[k];
   }
   stencil_lo_ = lo;
   stencil_hi_ = hi;
