@@ -189,6 +189,29 @@ std::vector<Figure> kick3d_scaling(std::int64_t small_n, std::int64_t large_n, i
   return out;
 }
 
+// A 3D r = 0.9 blast in the unbounded medium (the --limit case's physics, one realisation) to
+// t_max against the elastic gas of sim/thermal3d_phi0.2, in the same process one after the
+// other: CPU time per collision of each and their ratio. The blast's cost grows with its size
+// as its records outgrow the caches (t = 2e4: 2.1e5 active spheres; t = 3.5e5: about 2.2e6).
+std::vector<Figure> blast_against_thermal(double t_max) {
+  const double thermal = 1e6 / thermal3d(0.2)[0].value;
+  PhysicsConfig c;
+  c.dim = 3;
+  c.particles = 30000000;
+  c.restitution = 0.9;
+  c.medium = Medium::Unbounded;
+  c.t_max = t_max;
+  validate(c);
+  auto sim = make_simulation(c);
+  const double cpu0 = cpu_seconds();
+  sim->run_until(t_max);
+  const double blast = 1e6 * (cpu_seconds() - cpu0) / static_cast<double>(sim->stats().collisions);
+  return {{"blast_active", static_cast<double>(sim->sample().active), "", ""},
+          {"blast_cpu_microseconds_per_collision", blast, "us", ""},
+          {"thermal_cpu_microseconds_per_collision", thermal, "us", ""},
+          {"blast_over_thermal_cost_per_collision", blast / thermal, "", "<= 1.5 at 2e6 active"}};
+}
+
 std::vector<Figure> rsa_2e6() {
   Rng rng(1, 0, Stream::Positions);
   const std::int64_t n = 2000000;
@@ -216,6 +239,13 @@ void add_sim_cases(std::vector<Case>& cases) {
   cases.push_back({"sim/sizes_thermal3d_phi0.5",
                    "elastic 3D gas, packing 0.5 (melted lattice), N = 9261 to 216000", true,
                    thermal3d_by_size});
+  cases.push_back({"sim/blast3d_r0.9_vs_thermal",
+                   "3D r = 0.9 blast, unbounded, to t = 2e4 (2e5 active) against "
+                   "sim/thermal3d_phi0.2: cost per collision",
+                   false, [] { return blast_against_thermal(2e4); }});
+  cases.push_back({"sim/blast3d_r0.9_2e6_vs_thermal",
+                   "the same to t = 3.5e5 (about 2.2e6 active, 1 GB)", true,
+                   [] { return blast_against_thermal(3.5e5); }});
   cases.push_back({"sim/kick2d_paper", "2D kick, N = 2.5e5, r = 0.8, to t = 87581", false,
                    [] { return kick(2, 250000, "< 1 s"); }});
   cases.push_back(

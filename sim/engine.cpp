@@ -204,7 +204,9 @@ void Engine<D>::make_cell(std::int32_t cell) {
 
 template <int D>
 void Engine<D>::take_memory(std::size_t n) {
-  const auto each = static_cast<std::int64_t>(std::ceil(unbounded_bytes_per_particle(config_)));
+  if (bytes_each_ == 0)  // once: every cell made asks, and the estimate takes a pow
+    bytes_each_ = static_cast<std::int64_t>(std::ceil(unbounded_bytes_per_particle(config_)));
+  const std::int64_t each = bytes_each_;
   if (memory_.take(static_cast<std::int64_t>(n) * each)) return;
   const MemoryBudget& all = MemoryBudget::process();
   throw UserError("--t-max " + format_double(config_.t_max) + ": the unbounded medium's " +

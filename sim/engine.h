@@ -302,6 +302,7 @@ class Engine final : public Simulation {
   VecArray<D> fresh_;
   std::size_t capacity_ = 0;
   BudgetShare memory_;  // what the made particles take of the process's memory
+  std::int64_t bytes_each_ = 0;  // what each takes of it (unbounded_bytes_per_particle)
 
   // Sticky clusters (1D, r = 0): particles are indexed along the line, a cluster is a cyclic
   // index range, and its two ends know each other.

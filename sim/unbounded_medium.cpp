@@ -129,6 +129,13 @@ UnboundedMedium<D>::UnboundedMedium(double candidate_density, double cell_side,
     throw UserError("medium cell side: must be in [1, 16] diameters, not " +
                     std::to_string(cell_side));
   GS_CHECK(candidate_density > 0 && std::isfinite(candidate_density));
+  // A cell's count is Poisson(mu) drawn by inversion, in pieces of mean at most 8 so that e^-mu
+  // stays far from underflow; every cell has the same pieces.
+  const double mu = rho_ * std::pow(side_, D);
+  for (double left = mu; left > 0; left -= 8.0) {
+    const double m = std::min(left, 8.0);
+    pieces_.push_back({m, std::exp(-m)});
+  }
 }
 
 template <int D>
@@ -156,19 +163,16 @@ template <int D>
 void UnboundedMedium<D>::draw_block(const Cell& block) {
   const Block entry{static_cast<std::uint32_t>(pool_.size()),
                     static_cast<std::uint32_t>(offsets_.size())};
-  const double mu = rho_ * std::pow(side_, D);
   Cell local{};
   for (int n = 0; n < kBlockCells; ++n) {
     Cell c;
     for (int k = 0; k < D; ++k) c[k] = block[k] * kBlock + local[k];
     offsets_.push_back(static_cast<std::uint32_t>(pool_.size() - entry.first_candidate));
     Rng rng(seed_, realisation_, Stream::Medium, c);
-    // Poisson(mu) by inversion, in pieces of mean at most 8 so that e^-mu stays far from
-    // underflow.
     std::uint64_t count = 0;
-    for (double left = mu; left > 0; left -= 8.0) {
-      const double m = std::min(left, 8.0);
-      double p = std::exp(-m), cdf = p;
+    for (const Piece& piece : pieces_) {
+      const double m = piece.mean;
+      double p = piece.p0, cdf = p;
       const double u = rng.uniform();
       std::uint64_t k = 0;
       while (u >= cdf && k < 1000) {
@@ -185,7 +189,8 @@ void UnboundedMedium<D>::draw_block(const Cell& block) {
         const double lo = static_cast<double>(c[k]) * side_;
         const double hi = static_cast<double>(c[k] + 1) * side_;
         // Rounding may put lo + u s on hi: keep every centre inside its own half-open cell.
-        cand.x[k] = std::min(lo + rng.uniform() * side_, std::nextafter(hi, lo));
+        const double x = lo + rng.uniform() * side_;
+        cand.x[k] = x < hi ? x : std::nextafter(hi, lo);
       }
       cand.t = rng.uniform();
       cand.state = 0;
@@ -200,34 +205,99 @@ void UnboundedMedium<D>::draw_block(const Cell& block) {
 }
 
 template <int D>
+const typename UnboundedMedium<D>::Block& UnboundedMedium<D>::block(const Cell& b) {
+  int slot = 0;
+  for (int k = 0; k < D; ++k) slot |= static_cast<int>(b[k] & 3) << (2 * k);
+  Recent& r = recent_[static_cast<std::size_t>(slot)];
+  if (!r.valid || r.key != b) {
+    auto it = blocks_.find(b);
+    if (it == blocks_.end()) {
+      draw_block(b);
+      it = blocks_.find(b);
+    }
+    r = {b, it->second, true};
+  }
+  return r.block;
+}
+
+template <int D>
 typename UnboundedMedium<D>::Range UnboundedMedium<D>::cell(const Cell& c) {
-  Cell block;
+  Cell b;
   int local = 0;
   for (int k = D - 1; k >= 0; --k) {
-    // Floor division: cell -1 is in block -1.
-    block[k] = c[k] >= 0 ? c[k] / kBlock : -((-c[k] - 1) / kBlock) - 1;
-    local = local * kBlock + static_cast<int>(c[k] - block[k] * kBlock);
+    b[k] = c[k] >> kShift;  // floor division: cell -1 is in block -1
+    local = (local << kShift) | static_cast<int>(c[k] & (kBlock - 1));
   }
-  if (!has_last_ || block != last_block_) {
-    auto it = blocks_.find(block);
-    if (it == blocks_.end()) {
-      draw_block(block);
-      it = blocks_.find(block);
+  const Block& entry = block(b);
+  const std::uint32_t* o = &offsets_[entry.first_offset + static_cast<std::uint32_t>(local)];
+  return {entry.first_candidate + o[0], o[1] - o[0]};
+}
+
+template <int D>
+void UnboundedMedium<D>::gather(const Cell& lo, const Cell& hi) {
+  if (stencil_valid_ && lo == stencil_lo_ && hi == stencil_hi_) return;
+  // The cells span one block or two along each axis (at most 3 cells of blocks 4 or more wide):
+  // each of those blocks is found (drawn if need be) once, before any offset is read, since
+  // drawing grows the pool and the offsets. They are numbered by a bit per axis, set for the
+  // upper one.
+  Cell first, last;
+  for (int k = 0; k < D; ++k) first[k] = lo[k] >> kShift, last[k] = hi[k] >> kShift;
+  std::array<Block, 1 << D> blocks{};
+  for (int m = 0; m < (1 << D); ++m) {
+    Cell b;
+    bool used = true;
+    for (int k = 0; k < D; ++k) {
+      used = used && (!((m >> k) & 1) || last[k] != first[k]);
+      b[k] = (m >> k) & 1 ? last[k] : first[k];
     }
-    last_block_ = block;
-    last_ = it->second;
-    has_last_ = true;
+    if (used) blocks[static_cast<std::size_t>(m)] = block(b);
   }
-  const Block& b = last_;
-  const std::uint32_t* o = &offsets_[b.first_offset + static_cast<std::uint32_t>(local)];
-  return {b.first_candidate + o[0], o[1] - o[0]};
+  // What each coordinate adds to a cell's place: its block's bit and its index in the block. A
+  // row along x within one block is consecutive in it: one range holds its candidates.
+  int bits[D][3], locals[D][3], counts[D];
+  for (int k = 1; k < D; ++k) {
+    counts[k] = static_cast<int>(hi[k] - lo[k] + 1);
+    for (int a = 0; a < counts[k]; ++a) {
+      const std::int64_t c = lo[k] + a;
+      bits[k][a] = static_cast<int>((c >> kShift) != first[k]) << k;
+      locals[k][a] = static_cast<int>(c & (kBlock - 1)) << (kShift * k);
+    }
+  }
+  int seg_bit[2], seg_local[2], seg_cells[2], segs = 0;
+  for (std::int64_t x = lo[0]; x <= hi[0]; ++segs) {
+    const bool upper = (x >> kShift) != first[0];
+    const std::int64_t end = upper ? hi[0] : std::min(hi[0], (first[0] + 1) * kBlock - 1);
+    seg_bit[segs] = upper;
+    seg_local[segs] = static_cast<int>(x & (kBlock - 1));
+    seg_cells[segs] = static_cast<int>(end - x + 1);
+    x = end + 1;
+  }
+  int n = 0;
+  int at[D] = {};
+  for (;;) {
+    int m = 0, local = 0;
+    for (int k = 1; k < D; ++k) m |= bits[k][at[k]], local |= locals[k][at[k]];
+    for (int g = 0; g < segs; ++g) {
+      const Block& b = blocks[static_cast<std::size_t>(m | seg_bit[g])];
+      const std::uint32_t* o =
+          &offsets_[b.first_offset + static_cast<std::uint32_t>(local | seg_local[g])];
+      stencil_[static_cast<std::size_t>(n++)] = {b.first_candidate + o[0], o[seg_cells[g]] - o[0]};
+    }
+    int k = 1;
+    while (k < D && at[k] == counts[k] - 1) at[k] = 0, ++k;
+    if (k >= D) break;
+    ++at[k];
+  }
+  stencil_lo_ = lo;
+  stencil_hi_ = hi;
+  stencil_count_ = n;
+  stencil_valid_ = true;
 }
 
 template <int D>
 bool UnboundedMedium<D>::accepted(std::uint32_t start) {
   if (pool_[start].state != 0) return pool_[start].state > 0;
   stack_.assign(1, start);
-  std::array<Range, (D == 1 ? 3 : D == 2 ? 9 : 27)> ranges;
   while (!stack_.empty()) {
     const std::uint32_t j = stack_.back();
     if (pool_[j].state != 0) {
@@ -235,27 +305,19 @@ bool UnboundedMedium<D>::accepted(std::uint32_t start) {
       continue;
     }
     // The cells any candidate within one diameter can lie in (2 or 3 per axis, as s >= 1).
-    // They are drawn before any candidate is read: drawing grows the pool.
     const Vec<D> x = pool_[j].x;
     Cell lo, hi;
     for (int k = 0; k < D; ++k) {
       lo[k] = static_cast<std::int64_t>(std::floor((x[k] - 1.0) / side_));
       hi[k] = static_cast<std::int64_t>(std::floor((x[k] + 1.0) / side_));
     }
-    int n_ranges = 0;
-    Cell c = lo;
-    for (;;) {
-      ranges[n_ranges++] = cell(c);
-      int k = 0;
-      while (k < D && c[k] == hi[k]) c[k] = lo[k], ++k;
-      if (k == D) break;
-      ++c[k];
-    }
+    gather(lo, hi);
     const Candidate& me = pool_[j];
     bool blocked = false;
     nearby_.clear();
-    for (int r = 0; r < n_ranges && !blocked; ++r)
-      for (std::uint32_t i = ranges[r].first; i < ranges[r].first + ranges[r].count; ++i) {
+    for (int r = 0; r < stencil_count_ && !blocked; ++r) {
+      const Range range = stencil_[static_cast<std::size_t>(r)];
+      for (std::uint32_t i = range.first; i < range.first + range.count; ++i) {
         const Candidate& other = pool_[i];
         if (other.state < 0 || !earlier(other, me) || (other.x - x).squaredNorm() >= 1.0)
           continue;
@@ -265,6 +327,7 @@ bool UnboundedMedium<D>::accepted(std::uint32_t start) {
         }
         nearby_.push_back(i);
       }
+    }
     if (blocked) {
       pool_[j].state = -1;
       stack_.pop_back();
@@ -311,7 +374,8 @@ void UnboundedMedium<D>::clear() {
   pool_ = {};
   offsets_ = {};
   blocks_ = {};
-  has_last_ = false;
+  recent_ = {};
+  stencil_valid_ = false;
 }
 
 template class UnboundedMedium<1>;

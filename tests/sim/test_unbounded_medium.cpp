@@ -22,15 +22,16 @@ namespace {
 template <int D>
 using Cell = typename UnboundedMedium<D>::Cell;
 
-// Every cell of [0, side)^D in lexicographic order.
+// Every cell of [origin, origin + side)^D in lexicographic order.
 template <int D>
-std::vector<Cell<D>> cells_of_cube(int side) {
+std::vector<Cell<D>> cells_of_cube(int side, std::int64_t origin = 0) {
   std::vector<Cell<D>> out;
-  Cell<D> c{};
+  Cell<D> c;
+  c.fill(origin);
   for (;;) {
     out.push_back(c);
     int k = 0;
-    while (k < D && c[k] == side - 1) c[k] = 0, ++k;
+    while (k < D && c[k] == origin + side - 1) c[k] = origin, ++k;
     if (k == D) break;
     ++c[k];
   }
@@ -38,9 +39,9 @@ std::vector<Cell<D>> cells_of_cube(int side) {
 }
 
 template <int D>
-VecArray<D> cube(UnboundedMedium<D>& m, int side) {
+VecArray<D> cube(UnboundedMedium<D>& m, int side, std::int64_t origin = 0) {
   VecArray<D> x;
-  for (const auto& c : cells_of_cube<D>(side)) m.particles(c, x);
+  for (const auto& c : cells_of_cube<D>(side, origin)) m.particles(c, x);
   return x;
 }
 
@@ -169,6 +170,31 @@ TEST(UnboundedMedium, NoOverlapsAcrossCells) {
     EXPECT_GT(close_pairs(x2, 100, 1.1), 100u);
     EXPECT_GT(close_pairs(x3, 25, 1.1), 100u);
   }
+}
+
+// The medium is drawn in blocks of cells, found by floor division of the cell coordinates: cubes
+// across the origin (blocks -1 and 0 meet there) and across other block edges have no overlaps
+// either, and the particles of a cell are the same whether it is asked alone or with the cube.
+TEST(UnboundedMedium, NoOverlapsAcrossTheOriginAndBlockEdges) {
+  auto check = [](auto dim, int side, std::int64_t origin) {
+    constexpr int D = decltype(dim)::value;
+    UnboundedMedium<D> m(options<D>(0.45, 4));
+    VecArray<D> x = cube(m, side, origin);
+    for (Vec<D>& p : x) p -= Vec<D>::Constant(static_cast<double>(origin) * m.cell_side());
+    EXPECT_EQ(close_pairs(x, side * m.cell_side(), 1.0), 0u) << D << "D from " << origin;
+    EXPECT_GT(close_pairs(x, side * m.cell_side(), 1.1), 50u);
+    UnboundedMedium<D> alone(options<D>(0.45, 4));
+    const Cell<D> corner = cells_of_cube<D>(side, origin).front();
+    VecArray<D> a, b;
+    alone.particles(corner, a);
+    m.particles(corner, b);
+    EXPECT_EQ(a, b);
+  };
+  check(std::integral_constant<int, 1>{}, 2000, -1000);
+  check(std::integral_constant<int, 2>{}, 60, -30);
+  check(std::integral_constant<int, 2>{}, 40, -37);
+  check(std::integral_constant<int, 3>{}, 20, -10);
+  check(std::integral_constant<int, 3>{}, 14, -21);
 }
 
 TEST(UnboundedMedium, OneDimensionalMediumFollowsRenyi) {
