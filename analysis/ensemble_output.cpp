@@ -182,7 +182,7 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j["realisations"] = sums.count();
   j["realisation_indices"] = sums.indices();
   j["alpha_theory"] = f.alpha_theory;
-  j["alpha_theory_rule"] = p.elastic() ? "2/(d+2) for r = 1" : "1/(d+1) for r < 1";
+  j["alpha_theory_rule"] = !p.elastic() ? "1/(d+1) for r < 1" : "2/(d+2) for r = 1";
   Json& exponents = j["exponents"] = Json::array();
   for (const auto& e : f.exponents)
     exponents.push_back({{"quantity", e.quantity},
@@ -199,6 +199,8 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
                          {"plateau_drift_error", e.plateau.drift_error},
                          {"plateau_curvature", e.plateau.curvature},
                          {"plateau_curvature_error", e.plateau.curvature_error},
+                         {"window_systematic", e.window_systematic},
+                         {"passing_windows", e.plateau.passing_windows},
                          {"corrected_exponent", e.corrected.b},
                          {"corrected_ci", Json::array({e.corrected.ci_lo, e.corrected.ci_hi})},
                          {"corrected_omega", e.corrected.omega},
@@ -207,12 +209,14 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
                          {"note", e.note}});
   j["exponent_definition"] =
       "least-squares slope of ln <y> vs ln t over the window (automatic: the plateau of "
-      "the local slope, analysis/effective_exponent.h: the latest window of >= 0.5 "
-      "decades, after <N_t> >= 20, whose drift D (mean local slope of its last third "
-      "minus that of its first) and curvature K (middle third minus the mean of the "
-      "outer two) are both within 2 bootstrap standard deviations over realisations "
-      "(+ 1e-3); none: no fit); plateau_drift = D, plateau_drift_error = its standard "
-      "deviation; interval: 95% percentile bootstrap over realisations";
+      "the local slope, analysis/effective_exponent.h: the latest window of >= 1 "
+      "decade, after <N_t> >= 20, whose drift D (mean local slope of its last third "
+      "minus that of its first), curvature K (middle third minus the mean of the "
+      "outer two) and distance from the last decade's mean slope are each within 2 "
+      "bootstrap standard deviations over realisations (+ 1e-3) and within 0.005; none: "
+      "no fit); plateau_drift = D, plateau_drift_error = its standard deviation; "
+      "window_systematic: standard deviation of the mean local slope over the "
+      "passing_windows; interval: 95% percentile bootstrap over realisations";
   // v_t is no fit of its own: v_rms^2 = 2 E / N holds exactly (analysis/ensemble_fits.h).
   j["v_t"] = {{"identity", "v_rms^2 = 2 E_t / N_t"},
               {"max_relative_deviation", f.speed_identity_error}};
@@ -250,6 +254,8 @@ std::string summary_json(const EnsembleSums& sums, const EnsembleFits& f) {
   j["anisotropy_slope"] = f.anisotropy_slope;
   j["anisotropy_slope_error"] = f.anisotropy_slope_error;
   j["anisotropy_slope_window"] = window_json(f.anisotropy_window);
+  j["anisotropy_isotropic_last"] = f.anisotropy_floor;
+  j["anisotropy_isotropic_last_sem"] = f.anisotropy_floor_sem;
   j["packing_typical"] = f.packing_typical;
   j["packing_typical_sem"] = f.packing_typical_sem;
   j["packing_upper"] = f.packing_upper;

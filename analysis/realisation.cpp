@@ -108,7 +108,7 @@ std::string read_text(const std::filesystem::path& file) {
 }  // namespace
 
 double theory_alpha(const PhysicsConfig& c) {
-  return c.elastic() ? 2.0 / (c.dim + 2) : 1.0 / (c.dim + 1);
+  return !c.elastic() ? 1.0 / (c.dim + 1) : 2.0 / (c.dim + 2);
 }
 
 EnsembleSpec checked(EnsembleSpec spec) {
@@ -299,11 +299,32 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   return m;
 }
 
+namespace {
+
+// P_r and A's isotropic floor of the active particles at sample k, appended to `row` (NaN while
+// there is no band). The shuffles draw from a stream keyed by the sample, so a realisation
+// resumed from its state in flight draws what an unbroken one does.
+void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64_t index,
+                      std::size_t k, double active, Snapshot& act, std::vector<double>& row) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (active < kFrontMinActive) {
+    row.push_back(nan);
+    row.push_back(nan);
+    return;
+  }
+  sim.active_snapshot(act);
+  row.push_back(radial_momentum(act));
+  Rng rng(c.seed, index, Stream::Shuffle, std::array<std::int64_t, 1>{std::int64_t(k)});
+  row.push_back(isotropic_anisotropy(act, rng));
+}
+
+}  // namespace
+
 Realisation empty_realisation(const Recorder& recorder, std::uint64_t index) {
   Realisation r;
   r.index = index;
   r.timeseries.names = recorder.columns();
-  r.timeseries.names.push_back("front_radius");
+  for (const char* n : kAddedColumns) r.timeseries.names.push_back(n);
   r.timeseries.columns.assign(r.timeseries.names.size(), {});
   return r;
 }
@@ -338,6 +359,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
   std::size_t next_snap = out.snapshots.size();
   Snapshot s;  // one buffer for every snapshot time: at 2e6 spheres a fresh one is 130 MB
   std::vector<Eigen::Vector3d> active;  // the front radius's input at every sample
+  Snapshot act;                         // the active particles at every sample (P_r, A's floor)
   using Clock = std::chrono::steady_clock;
   const bool keeping = !in_flight.file.empty() && in_flight.interval > 0;
   auto kept = Clock::now();
@@ -378,6 +400,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
       front = front_of(active, c.dim, c.density).radius;
     }
     row.push_back(front);
+    add_band_columns(*sim, c, index, k, row[active_column], act, row);
     out.timeseries.add_row(row);
     if (next_snap < spec.snapshot_times.size() &&
         std::abs(spec.snapshot_times[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {

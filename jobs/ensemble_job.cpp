@@ -156,7 +156,7 @@ EnsembleResult run_ensemble_job(const EnsembleOptions& o) {
   }
   write_file_atomic(dir / "ensemble.toml", job_toml(job));
   EnsembleResult r = run_job(dir, job, o.threads, o.quiet, o.progress, o.messages, ranks);
-  if (o.page && !r.interrupted) write_folder_page(dir.string(), "index.html");
+  if (o.page && !r.interrupted) write_folder_page(dir.string(), "index.html", o.messages);
   return r;
 }
 

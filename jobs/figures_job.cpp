@@ -197,7 +197,7 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
   const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, resumed, plan.fig1};
   write_figures_summary(dir, run, results, cmp, problems);
   write_figures_report(dir, run, results, x, cmp, problems);
-  if (o.page) write_folder_page(dir.string(), "report.html");
+  if (o.page) write_folder_page(dir.string(), "report.html", o.messages);
   if (costs) costs->figures = figure_meter.read();
   return {dir, run.wall, problems};
 }

@@ -445,7 +445,7 @@ void finish_run(RunLoop& loop, const fs::path& dir, const RunOptions& o, double 
                 double movie_s, bool stopped) {
   loop.finish_checkpoint();  // a run stopped in its pictures resumes from it
   const Simulation& sim = loop.simulation();
-  if (!stopped && o.page) write_folder_page(dir.string(), "index.html");  // before summary.json
+  if (!stopped && o.page) write_folder_page(dir.string(), "index.html", o.messages);  // before summary.json
   write_file_atomic(dir / "timing.json", timing_json(loop.timing(), after_s, movie_s, sim));
   write_file_atomic(dir / "summary.json", summary_json(o, sim, stopped));
   if (!stopped) loop.remove_checkpoints();

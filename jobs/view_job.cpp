@@ -294,7 +294,8 @@ ViewResult write_view(const ViewOptions& o) {
   return r;
 }
 
-void write_folder_page(const std::string& dir, const std::string& page) {
+void write_folder_page(const std::string& dir, const std::string& page,
+                       const MessageSink& messages) {
   ViewOptions o;
   o.inputs = {dir};
   o.out = (fs::path(dir) / page).string();
@@ -304,7 +305,7 @@ void write_folder_page(const std::string& dir, const std::string& page) {
   try {
     write_view(o);
   } catch (const UserError& e) {
-    std::fprintf(stderr, "grainshock: warning: no %s written: %s\n", o.out.c_str(), e.what());
+    tell(messages, MessageKind::Warning, "no " + o.out + " written: " + e.what());
   }
 }
 

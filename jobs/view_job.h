@@ -6,6 +6,7 @@
 
 #include "io/snapshot_file.h"
 #include "render/render_choices.h"
+#include "sim/messages.h"
 
 namespace gs::jobs {
 
@@ -36,8 +37,9 @@ std::string view_page(const std::vector<const Snapshot*>& snaps, const ViewOptio
                       ViewResult* result = nullptr);
 
 // The page a command leaves in its folder: DIR/index.html of a run or ensemble, report.html of
-// a figures folder. Quiet; a failure is reported on stderr as a warning and leaves the rest of
+// a figures folder. Quiet; a failure is reported to `messages` as a warning and leaves the rest of
 // the folder as it is (the results are written already). Its size budget is 20 MB.
-void write_folder_page(const std::string& dir, const std::string& page);
+void write_folder_page(const std::string& dir, const std::string& page,
+                       const MessageSink& messages);
 
 }  // namespace gs::jobs
