@@ -10,17 +10,12 @@
 #include "sim/error.h"
 #include "sim/observables.h"
 #include "sim/rng.h"
+#include "tests/analysis/log_grid.h"
 
 namespace gs {
 namespace {
 
-// Log-spaced times, `per_decade` samples per decade from t0 to t1.
-std::vector<double> log_grid(double t0, double t1, int per_decade) {
-  std::vector<double> t;
-  const int n = int(std::lround(std::log10(t1 / t0) * per_decade));
-  for (int i = 0; i <= n; ++i) t.push_back(t0 * std::pow(10.0, double(i) / per_decade));
-  return t;
-}
+using test::log_grid;
 
 // M realisations of A_k t^a exp(sigma xi): a random amplitude per realisation (which does not
 // change the exponent) and independent 20% log-normal noise at every sample.

@@ -14,18 +14,14 @@
 #include "analysis/shock.h"
 #include "sim/error.h"
 #include "sim/rng.h"
+#include "tests/analysis/log_grid.h"
 
 namespace gs {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::vector<double> log_grid(double t0, double t1, int per_decade) {
-  std::vector<double> t;
-  const int n = int(std::lround(std::log10(t1 / t0) * per_decade));
-  for (int i = 0; i <= n; ++i) t.push_back(t0 * std::pow(10.0, double(i) / per_decade));
-  return t;
-}
+using test::log_grid;
 
 // M realisations of A_k f(t) with a log-normal amplitude per realisation and relative noise
 // `noise` per sample.

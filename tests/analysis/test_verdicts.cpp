@@ -13,16 +13,12 @@
 #include "analysis/shock.h"
 #include "analysis/snowplow.h"
 #include "sim/rng.h"
+#include "tests/analysis/log_grid.h"
 
 namespace gs {
 namespace {
 
-std::vector<double> log_grid(double t0, double t1, int per_decade) {
-  std::vector<double> t;
-  const int n = int(std::lround(std::log10(t1 / t0) * per_decade));
-  for (int i = 0; i <= n; ++i) t.push_back(t0 * std::pow(10.0, double(i) / per_decade));
-  return t;
-}
+using test::log_grid;
 
 // M realisations of exp(integral of the slope s(ln t) d ln t) with relative noise per sample.
 template <class S>
