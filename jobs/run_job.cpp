@@ -242,7 +242,11 @@ void use_fig1_job(RunOptions& o) {
 
 namespace {
 
-// run.toml around the physics lines given.
+// run.toml around the physics lines given. Unlike the files of `movie` and `figures`, which
+// apps/cli.cpp writes from the flags typed, run.toml states the run's effective settings (the
+// Fig. 1 rule fills in t-max, the snapshots and the pictures), and its text is also the spec a
+// run's checkpoints hold (run_spec), whose bytes must not change or old checkpoints would be
+// refused; CliRunFile.EveryFlagRoundTrips keeps it holding every flag of `run`.
 std::string settings_toml(const RunOptions& o, const std::string& physics) {
   std::ostringstream t;
   t << "# grainshock run: every setting that shapes the results.\n"
