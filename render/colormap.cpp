@@ -45,12 +45,15 @@ std::array<float, 3> Colormap::full(double t) const {
   return c;
 }
 
+double srgb_to_linear(double u) {
+  return u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4);
+}
+
 namespace {
 
-// Relative luminance of an sRGB colour (WCAG 2.1, from IEC 61966-2-1).
+// Relative luminance of an sRGB colour (WCAG 2.1).
 double luminance(double r, double g, double b) {
-  auto lin = [](double u) { return u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4); };
-  return 0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b);
+  return 0.2126 * srgb_to_linear(r) + 0.7152 * srgb_to_linear(g) + 0.0722 * srgb_to_linear(b);
 }
 
 }  // namespace

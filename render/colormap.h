@@ -11,6 +11,10 @@ namespace gs::render {
 
 using Rgb8 = std::array<std::uint8_t, 3>;
 
+// An sRGB component in [0, 1] as linear light (IEC 61966-2-1): what a colour's luminance and a
+// glTF colour (linear by the glTF 2.0 spec, section 3.9.2) take.
+double srgb_to_linear(double u);
+
 class Colormap {
  public:
   // viridis, inferno, magma, cividis, turbo or grey; anything else is a UserError listing these.

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "render/colormap.h"
 #include "render/overlay.h"
 #include "render/scene.h"
 
@@ -15,6 +16,11 @@ namespace gs::render {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
+// An sRGB byte as a linear-light byte.
+std::uint8_t linear_byte(std::uint8_t srgb) {
+  return static_cast<std::uint8_t>(std::lround(255 * srgb_to_linear(srgb / 255.0)));
+}
 
 // A UV sphere of unit radius: positions (= normals) and triangle indices.
 void unit_sphere(std::vector<float>& pos, std::vector<std::uint16_t>& tri) {
@@ -89,7 +95,10 @@ std::string glb_scene(const Snapshot& s, const Style& style) {
     at.insert(at.end(), {static_cast<float>(p.x + o.x()), static_cast<float>(p.y + o.y()),
                          static_cast<float>(p.z + (sc.dim == 3 ? o.z() : 0.0))});
     scale.insert(scale.end(), {p.r, p.r, p.r});
-    colour.insert(colour.end(), {p.rgba[0], p.rgba[1], p.rgba[2], 255});
+    // The PNG's sRGB colour as the linear light glTF colours are (three.js and Blender read
+    // _COLOR_0 so): written as sRGB bytes it would show washed out.
+    for (int c = 0; c < 3; ++c) colour.push_back(linear_byte(p.rgba[c]));
+    colour.push_back(255);
   }
   Builder b;
   const int pos = b.add(sphere, 5126, "VEC3", sphere.size() / 3, false, 34962);

@@ -3,6 +3,7 @@
 // count), and the round trip of the particles' positions, radii and PNG colours.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -104,7 +105,13 @@ TEST(Gltf, ValidGlbRoundTripsParticles) {
     if (!s.active[i]) continue;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(at[3 * k + c], s.position[i][c], 1e-4);
     EXPECT_EQ(scale[3 * k], 0.5f);
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(colour[4 * k + c], sc.sprites[k].rgba[c]);
+    // glTF colours are linear light (glTF 2.0, 3.9.2): the PNG's sRGB bytes decoded by the
+    // IEC 61966-2-1 curve, so that sRGB 128 is stored as 55.
+    for (int c = 0; c < 3; ++c) {
+      const double u = sc.sprites[k].rgba[c] / 255.0;
+      const double linear = u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4);
+      EXPECT_EQ(colour[4 * k + c], std::lround(255 * linear));
+    }
     ++k;
   }
 }
