@@ -1,6 +1,7 @@
 #include "jobs/view_page.h"
 
 #include "analysis/json.h"
+#include "render/shader_files.h"
 #include "sim/error.h"
 
 namespace gs::jobs {
@@ -123,6 +124,15 @@ std::string page_html(const PageContent& c) {
   for (std::size_t k = 0; k < c.images.size(); ++k)
     data += "<script type=\"application/octet-stream\" id=\"gs-image-" + std::to_string(k) + "\">" +
             base64(c.images[k].png) + "</script>\n";
+  // The GLSL the renderer draws its spheres with, which page.js compiles as WebGL 2: raw text,
+  // as a script element of a type not JavaScript holds it up to its first "</script".
+  for (const auto& [id, glsl] :
+       {std::pair{"gs-sphere-billboard", render::shader_files::sphere_billboard()},
+        std::pair{"gs-sphere-frag", render::shader_files::sphere_impostor_frag()}}) {
+    GS_CHECK(glsl.find("</") == std::string_view::npos);
+    data += std::string("<script type=\"x-shader\" id=\"") + id + "\">" + std::string(glsl) +
+            "</script>\n";
+  }
   std::string page(page_assets::html());
   replace_marker(page, "<!--GS:STYLE-->",
                  "<style>\n" + std::string(page_assets::css()) + "</style>");

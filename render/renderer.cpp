@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
+#include <string>
 
 #include "render/annotations.h"
 #include "render/colormap.h"
 #include "render/field.h"
 #include "render/frame_threads.h"
 #include "render/gl_api.h"
+#include "render/shader_files.h"
 #include "sim/error.h"
 
 namespace gs::render {
@@ -111,8 +113,10 @@ void main() {
 )";
 
 // A billboard facing the eye, large enough to hold the sphere's perspective silhouette; the
-// fragment shader ray-casts the sphere and writes its true depth.
-const char* kSphereVS = R"(#version 330 core
+// fragment shader ray-casts the sphere and writes its true depth. Both bodies are files under
+// assets/shaders that the page of `grainshock view` shares (render/shader_files.h).
+std::string sphere_vs() {
+  return "#version 330 core\n" + std::string(shader_files::sphere_billboard()) + R"(
 layout(location = 0) in vec4 inst;
 layout(location = 1) in vec4 colour;
 uniform mat4 view;
@@ -125,47 +129,18 @@ flat out vec4 col;
 void main() {
   vec2 corner = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
   vec3 c = (view * vec4(inst.xyz, 1.0)).xyz;
-  float r = inst.w;
-  float d2 = dot(c, c);
-  float s = r * sqrt(d2 / max(d2 - r * r, 1e-4 * d2)) + sqrt(d2) * px_per_depth;
-  vec3 w = normalize(c);
-  vec3 up = abs(w.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
-  vec3 u = normalize(cross(up, w));
-  vec3 v = cross(w, u);
-  vpos = c + (corner.x * u + corner.y * v) * s;
+  vpos = sphere_billboard(c, inst.w, corner, px_per_depth);
   gl_Position = proj * vec4(vpos, 1.0);
   centre = c;
-  radius = r;
+  radius = inst.w;
   col = colour;
 }
 )";
-
-const char* kSphereFS = R"(#version 330 core
-in vec3 vpos;
-flat in vec3 centre;
-flat in float radius;
-flat in vec4 col;
-uniform mat4 proj;
-uniform vec3 light;  // unit, eye space
-uniform float px_per_depth;
-out vec4 frag;
-void main() {
-  vec3 dir = normalize(vpos);
-  float b = dot(dir, centre);
-  vec3 q = centre - b * dir;  // from the ray's closest point to the centre: stable in float
-  float miss = length(q);
-  float cover = clamp((radius - miss) / (b * px_per_depth) + 0.5, 0.0, 1.0);
-  if (cover <= 0.0 || b <= 0.0) discard;
-  float t = b - sqrt(max(radius * radius - miss * miss, 0.0));
-  vec3 p = dir * t;
-  vec3 n = (p - centre) / radius;
-  float diffuse = max(dot(n, light), 0.0);
-  float spec = pow(max(dot(n, normalize(light - dir)), 0.0), 40.0);
-  frag = vec4(col.rgb * (0.3 + 0.7 * diffuse) + vec3(0.25 * spec), cover);
-  vec4 clip = proj * vec4(p, 1.0);
-  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
 }
-)";
+
+std::string sphere_fs() {
+  return "#version 330 core\n" + std::string(shader_files::sphere_impostor_frag());
+}
 
 // The disc fragment shader's coverage rule on the CPU: pixel centres at half-integers, the
 // picture's centre at the camera origin, y up. Only the pixels whose centre lies within
@@ -508,7 +483,7 @@ struct Renderer::Impl {
     max_point_size = range[1];
     disc_prog = link(kDiscVS, kDiscFS);
     point_prog = link(kPointVS, kPointFS);
-    sphere_prog = link(kSphereVS, kSphereFS);
+    sphere_prog = link(sphere_vs().c_str(), sphere_fs().c_str());
     gl.GenVertexArrays(1, &vao);
     gl.GenBuffers(1, &vbo);
     gl.GenBuffers(1, &ibo);

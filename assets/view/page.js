@@ -94,8 +94,11 @@ void main() {
   if (a <= 0.0) discard;
   frag = vec4(col.rgb, a);
 }`;
-  // The PNG's sphere impostor (render/renderer.cpp), with the slab cut done per instance.
+  // The PNG's sphere impostor: the billboard and the fragment shader are render/renderer.cpp's
+  // (assets/shaders, which the page carries in script elements), the slab cut done per instance.
+  const shader = (id) => document.getElementById(id).textContent;
   const VS3 = `#version 300 es
+${shader('gs-sphere-billboard')}
 layout(location = 0) in vec3 qpos;
 layout(location = 1) in uint cidx;
 layout(location = 2) in float rad;
@@ -113,13 +116,7 @@ void main() {
   vec2 corner = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
   vec3 c = (view * vec4(pw, 1.0)).xyz;
   float r = rad * rmax;
-  float d2 = dot(c, c);
-  float s = r * sqrt(d2 / max(d2 - r * r, 1e-4 * d2)) + sqrt(d2) * px_per_depth;
-  vec3 w = normalize(c);
-  vec3 up = abs(w.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
-  vec3 u = normalize(cross(up, w));
-  vec3 v = cross(w, u);
-  vpos = c + (corner.x * u + corner.y * v) * s;
+  vpos = sphere_billboard(c, r, corner, px_per_depth);
   gl_Position = proj * vec4(vpos, 1.0);
   centre = c;
   radius = r;
@@ -127,30 +124,7 @@ void main() {
 }`;
   const FS3 = `#version 300 es
 precision highp float;
-in vec3 vpos;
-flat in vec3 centre;
-flat in float radius;
-flat in vec4 col;
-uniform mat4 proj;
-uniform vec3 light;
-uniform float px_per_depth;
-out vec4 frag;
-void main() {
-  vec3 dir = normalize(vpos);
-  float b = dot(dir, centre);
-  vec3 q = centre - b * dir;
-  float miss = length(q);
-  float cover = clamp((radius - miss) / (b * px_per_depth) + 0.5, 0.0, 1.0);
-  if (cover <= 0.0 || b <= 0.0) discard;
-  float t = b - sqrt(max(radius * radius - miss * miss, 0.0));
-  vec3 p = dir * t;
-  vec3 n = (p - centre) / radius;
-  float diffuse = max(dot(n, light), 0.0);
-  float spec = pow(max(dot(n, normalize(light - dir)), 0.0), 40.0);
-  frag = vec4(col.rgb * (0.3 + 0.7 * diffuse) + vec3(0.25 * spec), cover);
-  vec4 clip = proj * vec4(p, 1.0);
-  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
-}`;
+${shader('gs-sphere-frag')}`;
 
   const canvas = $('gs-canvas');
   const state = {
