@@ -1,6 +1,6 @@
-# Script mode: writes OUT, a C++ source defining `std::string_view NAME()` for each input file
-# given as NAME=PATH in FILES (entries separated by commas), the file's bytes as a char array. Run at build time so
-# that the page's hand-written HTML, CSS and JavaScript stay files of their own under assets/.
+# Script mode (grainshock_embed_files, cmake/GrainshockTarget.cmake): writes OUT, a C++ source
+# defining `std::string_view NAME()` in NAMESPACE for each input file given as NAME=PATH in FILES
+# (entries separated by commas), the file's bytes as a char array.
 string(REPLACE "," ";" FILES "${FILES}")
 set(body "// Generated from the files under assets/ by cmake/EmbedFiles.cmake; do not edit.\n")
 string(APPEND body "#include <string_view>\nnamespace ${NAMESPACE} {\n")

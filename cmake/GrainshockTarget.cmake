@@ -32,3 +32,23 @@ function(grainshock_defaults target)
     target_link_options(${target} PUBLIC ${san})
   endif()
 endfunction()
+
+# Compiles files in as strings at build time: adds to `target` a generated source defining
+# `std::string_view NAME()` in `namespace` for each NAME=PATH given (cmake/EmbedFiles.cmake), so
+# that assets stay files of their own and the program needs none at run time.
+function(grainshock_embed_files target namespace)
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}_embedded.cpp)
+  set(paths)
+  foreach(entry IN LISTS ARGN)
+    string(REGEX REPLACE "^[^=]*=" "" path "${entry}")
+    list(APPEND paths ${path})
+  endforeach()
+  list(JOIN ARGN "," files)
+  add_custom_command(
+    OUTPUT ${out}
+    COMMAND ${CMAKE_COMMAND} -DNAMESPACE=${namespace} "-DFILES=${files}" -DOUT=${out}
+            -P ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    DEPENDS ${paths} ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    COMMENT "Embedding ${namespace}")
+  target_sources(${target} PRIVATE ${out})
+endfunction()
