@@ -319,6 +319,12 @@ TEST(RenderFiles, A3dFileIsDrawnWholeUnlessASlabIsAskedForWhichSaysWhatItLeftOut
   auto r = render(atoms.string() + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(times_said(r.err, "the slab"), 0u) << r.err;
+  ASSERT_EQ(render(atoms.string() + " --slab 0 --width 200 --height 150 --out " +
+                   (dir / "whole.png").string())
+                .exit_code,
+            0);
+  EXPECT_EQ(read_png((dir / "a.png").string()).rgba, read_png((dir / "whole.png").string()).rgba)
+      << "the default is not the whole box";
   r = render(atoms.string() + " --slab 6" + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::size_t at = r.err.find("the slab 6 thick through the centre kept ");
