@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
@@ -99,11 +101,35 @@ std::string figures(const CompareCommand& o, const render::ImageComparison& c) {
          ", PSNR " + psnr_text(c.psnr) + " dB, SSIM " + number("%.4f", c.ssim);
 }
 
+// What the rule cannot see, from the disc radius the renderer recorded in each PNG's text: the
+// renderer knows it exactly, where a size guessed from the pixels fails on touching discs, a
+// dense band or discs coloured near the background. Empty when both record discs of at least
+// kSmallestSeenDiscPx, or neither records any (another program's picture).
+std::string blindness(const CompareCommand& o) {
+  std::vector<std::pair<const std::string*, double>> small;
+  for (const std::string* path : {&o.expected, &o.actual}) {
+    const std::optional<double> r = render::disc_radius_of(render::read_png_text(*path));
+    if (r && *r < render::kSmallestSeenDiscPx) small.emplace_back(path, *r);
+  }
+  if (small.empty()) return {};
+  std::string t = "blind to one particle: ";
+  if (small.size() == 2 && number("%.3g", small[0].second) == number("%.3g", small[1].second))
+    t += "both have discs of " + number("%.3g", small[0].second) + " px radius";
+  else
+    for (std::size_t k = 0; k < small.size(); ++k)
+      t += (k ? ", " : "") + *small[k].first + " has discs of " +
+           number("%.3g", small[k].second) + " px radius";
+  return t + ", below the " + number("%.3g", render::kSmallestSeenDiscPx) +
+         " px this rule needs to see one particle move (draw them larger: --centre and --zoom, "
+         "--slab, a larger picture)";
+}
+
 Outcome compare_pngs(const CompareCommand& o) {
   const Image e = render::read_png(o.expected), a = render::read_png(o.actual);
   check_sizes(o, e.width, e.height, a.width, a.height);
   const render::ImageComparison c = render::compare_images(e, a, o.compare);
-  Outcome out{c.match(), figures(o, c), {}};
+  const std::string blind = blindness(o);
+  Outcome out{c.match(), (blind.empty() ? "" : blind + "; ") + figures(o, c), {}};
   if (!o.diff.empty()) out.diff = render::diff_image(e, a, o.compare);
   return out;
 }
@@ -206,10 +232,12 @@ void add_compare_command(CLI::App& app) {
   sub->add_flag("--update", o->update,
                 "Copy ACTUAL to EXPECTED when EXPECTED is missing or not alike; exit 0");
   sub->footer(
-      "Prints one line: alike or not alike, the largest blob of differing pixels (size, place, "
-      "how far off), the totals, the largest plain channel difference, PSNR (over R, G, B) and SSIM (Wang et al. 2004, BT.709 luma, 11x11 Gaussian "
-      "window). Exit 0 alike, 1 not alike, 2 bad input (missing file, different sizes, not a PNG "
-      "or movie).");
+      "Prints one line: alike or not alike; \"blind to one particle\" when a PNG drawn by "
+      "grainshock records discs under 1.5 px radius (too small for the rule to see one particle "
+      "move); the largest blob of differing pixels (size, place, how far off), the totals, the "
+      "largest plain channel difference, PSNR (over R, G, B) and SSIM (Wang et al. 2004, BT.709 "
+      "luma, 11x11 Gaussian window). Exit 0 alike, 1 not alike, 2 bad input (missing file, "
+      "different sizes, not a PNG or movie).");
   sub->callback([o] {
     try {
       compare(*o);

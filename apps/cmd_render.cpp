@@ -106,9 +106,10 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--fov", opt->view.fov, "3D: vertical field of view, degrees")
       ->capture_default_str();
-  sub->add_option("--slab", opt->view.slab,
-                  "3D: keep a slab this thick through the centre, facing the camera (0: all)")
-      ->capture_default_str();
+  sub->add_option("--slab", opt->slab,
+                  "3D: keep a slab this thick through the centre, facing the camera (0: all). "
+                  "Default: 6 for a kick's snapshot (its shell is hollow), 0 for others' files, "
+                  "as OVITO draws them; what a slab leaves out is said once");
   sub->add_flag("--no-colorbar", opt->no_colorbar, "Leave out the colour bar");
   sub->add_flag("--no-time", opt->no_time, "Leave out the time label");
   sub->add_flag("--no-legend", opt->no_legend, "Leave out the legend of the multi-time overlay");
@@ -160,16 +161,17 @@ void add_render_command(CLI::App& app) {
     throw_if_stopped();
     // Below a pixel of radius one particle is a speck that a golden comparison cannot see move
     // (a 20000-disc box drawn whole at 640x480, 0.73 px, hid 12 of 12 one-disc moves).
-    double r_max = 0;
-    for (const Snapshot* s : ptrs)
-      for (double r : s->radius) r_max = std::max(r_max, r);
-    const double r_px = r_max * renderer.last().camera.pixels_per_unit();
+    if (snaps.size() == 1)
+      if (const std::string cut = render::cut_note(o.style, snaps.front(), renderer.last().camera);
+          !cut.empty())
+        std::fprintf(stderr, "grainshock: %s: %s\n", o.inputs.front().c_str(), cut.c_str());
+    const double r_px = renderer.last().disc_radius_px;
     if (r_px > 0 && r_px < 1)
       std::fprintf(stderr,
                    "grainshock: warning: discs of %.2g px radius: one particle is below what the "
                    "picture or `grainshock compare` can show (zoom in or draw it larger)\n",
                    r_px);
-    render::write_png(o.out, img, render::png_text(ptrs), o.compression);
+    render::write_png(o.out, img, render::png_text(ptrs, r_px), o.compression);
   });
 }
 

@@ -269,6 +269,12 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
     if (v.size() != 1 || (v[0] != 0 && v[0] != 1)) bad("log/Unbounded is not one 0 or 1");
     s.info.unbounded = v[0] == 1;
   }
+  // A kick's snapshot (SnapshotInfo::kick), coloured by v/v_rms even without its resting particles.
+  if (const Entry* e = find(k, "log/Kick")) {
+    const std::vector<double> v = values(*e);
+    if (v.size() != 1 || (v[0] != 0 && v[0] != 1)) bad("log/Kick is not one 0 or 1");
+    s.info.kick = v[0] == 1;
+  }
   std::vector<double> box = {1, 1, 1, 0, 0, 0};
   if (const Entry* e = find(k, "configuration/box")) {
     if (e->n * e->m != 6) bad("configuration/box does not have 6 values");
@@ -313,6 +319,7 @@ Snapshot GsdSource::read(std::size_t k, const ReadOptions& options) const {
   // A chunk left out is the schema's default (image 0, typeid 0, mass 1, charge 0): gsd.hoomd
   // leaves a chunk of defaults out of frame 0, so others' files get their columns either way.
   const Entry* img = per_particle("particles/image", 3, true);
+  if (!ours && options.unwrap && !img) s.notes.push_back(kNothingToUnwrap);
   if (img || !ours) {
     const auto v = img ? values(*img) : std::vector<double>(3 * n, 0.0);
     if (ours || options.unwrap) {
@@ -464,6 +471,7 @@ struct Writer {
     // Only when set, so that box snapshots keep their bytes (OVITO shows it as attribute
     // Unbounded).
     if (s.info.unbounded) chunk("log/Unbounded", U8, 1, 1, std::vector<std::uint8_t>{1});
+    if (s.info.kick) chunk("log/Kick", U8, 1, 1, std::vector<std::uint8_t>{1});
     ++frame;
   }
 

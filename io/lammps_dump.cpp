@@ -204,6 +204,9 @@ Snapshot DumpSource::read(std::size_t k, const ReadOptions& options) const {
   }
   if (chosen[0] < 0 || chosen[1] < 0)
     fail(f.atoms_line, "ITEM: ATOMS has no x, xs, xu or xsu column for both x and y");
+  bool unwrappable = false;
+  for (int a = 0; a < 3; ++a) unwrappable |= chosen[a] >= 0 && (form_of[a] < 2 || image[a] >= 0);
+  if (options.unwrap && !unwrappable) s.notes.push_back(kNothingToUnwrap);
 
   std::vector<Slot> slots(ntok);
   bool velocity = false, has_radius = false;

@@ -37,6 +37,12 @@ struct ReadOptions {
   bool unwrap = false;
 };
 
+// The note of `unwrap` on a frame that has nothing to unwrap by (a dump of x y z without ix iy
+// iz or xu, a GSD file without particles/image, any extended XYZ file), so that the flag never
+// does nothing without a word.
+inline constexpr char kNothingToUnwrap[] =
+    "--unwrap: the file has no image flags to unwrap by; positions are drawn as written";
+
 // A file format's view of a file: its frames, each read on demand.
 class FrameSource {
  public:

@@ -214,6 +214,10 @@ Header XyzSource::parse_comment(std::string_view s, std::size_t line) const {
       if (value != "box" && value != "unbounded")
         fail(line, not_a(value, "box or unbounded", "Medium"));
       h.info.unbounded = value == "unbounded";
+    } else if (iequals(key, "Initial")) {
+      if (value != "kick" && value != "thermal")
+        fail(line, not_a(value, "kick or thermal", "Initial"));
+      h.info.kick = value == "kick";
     }
   }
   h.info.has_time = time_given;
@@ -395,7 +399,7 @@ void divide_by_element_masses(Snapshot& s, const std::vector<std::string_view>& 
   s.notes.push_back(std::move(note));
 }
 
-Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
+Snapshot XyzSource::read(std::size_t k, const ReadOptions& options) const {
   const FrameSpan& f = frames_[k];
   const std::string_view b = file_.bytes();
   const std::size_t comment_line = f.count_line + 1;
@@ -405,6 +409,7 @@ Snapshot XyzSource::read(std::size_t k, const ReadOptions&) const {
 
   Snapshot s;
   s.info = h.info;
+  if (options.unwrap) s.notes.push_back(kNothingToUnwrap);
 
   // A line has at most one token per 2 bytes, so a count beyond that cannot be right.
   // A frame of no particles has no lines to bound its columns by.
@@ -629,6 +634,7 @@ std::pair<std::string, std::string> xyz_pieces(const Snapshot& s, XyzFlavour fla
   opt("Speed", s.info.speed);
   if (s.info.seed) head += " Seed=" + std::to_string(*s.info.seed);
   if (s.info.unbounded) head += " Medium=unbounded";
+  if (s.info.kick) head += " Initial=kick";
   head += '\n';
 
   // Formatting the numbers is the cost: two threads format halves of the particles (the machine

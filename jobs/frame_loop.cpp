@@ -28,6 +28,7 @@ FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range) {
   f.step = s.info.step.value_or(0);
   f.dim = s.info.dim;
   f.box = s.info.box;
+  f.origin = s.info.origin;
   f.any_active = std::find(s.active.begin(), s.active.end(), 1) != s.active.end();
   auto in_front = [&](std::size_t i) {
     return f.any_active ? s.active[i] != 0 : s.has_velocity() && s.velocity[i].squaredNorm() > 0;
@@ -53,9 +54,36 @@ std::pair<double, double> fixed_range(const std::vector<FrameScan>& frames, rend
   return {lo, hi};
 }
 
+bool same_box(const Eigen::Vector3d& a_box, const Eigen::Vector3d& a_origin,
+              const Eigen::Vector3d& b_box, const Eigen::Vector3d& b_origin) {
+  return (b_box - a_box).cwiseAbs().maxCoeff() + (b_origin - a_origin).cwiseAbs().maxCoeff() <=
+         1e-9 * std::max(1.0, a_box.maxCoeff());
+}
+
+// The union of the frames' boxes, when they are not all the first one's (else nullopt).
+std::optional<Eigen::AlignedBox3d> moving_box(const std::vector<FrameScan>& frames) {
+  Eigen::AlignedBox3d all;
+  bool moves = false;
+  for (const auto& f : frames) {
+    if (!(f.box.head(f.dim).minCoeff() > 0)) continue;  // a frame without a box
+    all.extend(f.origin);
+    all.extend(f.origin + f.box);
+    moves |= !same_box(frames.front().box, frames.front().origin, f.box, f.origin);
+  }
+  if (!moves) return std::nullopt;
+  return all;
+}
+
 void finish_first_pass(Prepared& p) {
-  if (!p.stopped && p.plan.need_range)
-    p.plan.style.range = fixed_range(p.scans, p.plan.style.scale);
+  if (p.stopped) return;
+  if (p.plan.need_range) p.plan.style.range = fixed_range(p.scans, p.plan.style.scale);
+  // A fixed camera frames every box a frame has (an NPT run, a compression, LAMMPS fix deform):
+  // the camera stays put and each frame's box is outlined in it, as the particles move with it.
+  if (!p.plan.follow && !p.scans.empty())
+    if (const auto region = moving_box(p.scans)) {
+      p.plan.view.region = region;
+      p.plan.style.box_outline = true;
+    }
 }
 
 KeptFrames::KeptFrames(const std::filesystem::path& dir, bool keep)
@@ -116,7 +144,7 @@ FrontMovieResult render_pass(Frames& frames, const Prepared& p, const FrontMovie
       render_s += seconds_since(t0);
       if (pngs.on()) {
         t0 = std::chrono::steady_clock::now();
-        pngs.write(k, img, render::png_text(snap.info, snap.size()));
+        pngs.write(k, img, render::png_text({&snap}, renderer.last().disc_radius_px));
         png_s += seconds_since(t0);
       }
       t0 = std::chrono::steady_clock::now();

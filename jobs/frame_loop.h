@@ -30,6 +30,7 @@ struct FrameScan {
   std::int64_t step = 0;  // LAMMPS and HOOMD files: orders frames of equal (or no) time
   int dim = 2;
   Eigen::Vector3d box = Eigen::Vector3d::Zero();  // edges of the periodic box
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // its lower corner
   bool any_active = false;
   std::pair<double, double> range{0, 1};
   Eigen::AlignedBox3d front;  // active particles, else the moving ones (the kicked particle)
@@ -37,6 +38,10 @@ struct FrameScan {
 };
 
 FrameScan scan(const Snapshot& s, const render::Style& style, bool with_range);
+
+// True when box b (edges, lower corner) is box a's, to a part in 1e9 of a's largest edge.
+bool same_box(const Eigen::Vector3d& a_box, const Eigen::Vector3d& a_origin,
+              const Eigen::Vector3d& b_box, const Eigen::Vector3d& b_origin);
 
 // The union of the frames' robust ranges: no frame's bulk is clamped, one colour is one value.
 std::pair<double, double> fixed_range(const std::vector<FrameScan>& frames, render::Scale scale);
@@ -50,7 +55,8 @@ struct Prepared {
   bool stopped = false;
 };
 
-// Fixes the colour range that spans the scanned frames, if the plan needs one.
+// Fixes the colour range that spans the scanned frames, if the plan needs one; and, for a fixed
+// camera over frames whose boxes differ, frames the union of the boxes and outlines each.
 void finish_first_pass(Prepared& p);
 
 // The PNGs of --keep-frames in DIR/frames. Made before the movie starts, so that an unwritable

@@ -25,7 +25,6 @@
 #include "render/movie_parts.h"
 #include "render/renderer.h"
 #include "sim/error.h"
-#include "sim/format.h"
 #include "sim/stop.h"
 
 namespace gs::jobs {
@@ -155,33 +154,25 @@ struct StoredMovie::Impl {
   FrontMovieOptions options;
   std::string first_name;  // the first frame given, which the others must fit
   int first_dim = 2;
-  Eigen::Vector3d first_box = Eigen::Vector3d::Zero();
+  Eigen::Vector3d first_box = Eigen::Vector3d::Zero(), first_origin = Eigen::Vector3d::Zero();
   bool ordered = false;  // the frames are known to be in order of time
 };
 
 namespace {
 
 // Thrown by the drawing pass when frames given in the order of their files turn out not to be
-// in order of time: the movie then starts again after a pass that orders them.
+// in order of time, or a fixed camera meets a box unlike the first frame's (it must frame the
+// union of every frame's box): the movie then starts again after a pass over every frame.
 struct OutOfOrder {};
 
-// UserError naming the frame unless it fits the first: dimension, box, the field's data.
+// UserError naming the frame unless it fits the first: dimension, the field's data. Its box may
+// differ (finish_first_pass frames the union of the boxes).
 void check_stored_frame(const StoredMovie::Impl& m, std::size_t k, const Snapshot& s) {
   const std::string name = m.frames.name(k);
   const render::Style& style = m.prepared.plan.style;
   if (s.info.dim != m.first_dim)
     throw UserError(name + " is " + std::to_string(s.info.dim) + "D but " + m.first_name + " is " +
                     std::to_string(m.first_dim) + "D: a movie's frames share one dimension");
-  if ((s.info.box - m.first_box).cwiseAbs().maxCoeff() >
-      1e-9 * std::max(1.0, m.first_box.maxCoeff())) {
-    auto edges = [&](const Eigen::Vector3d& b) {
-      std::string e = format_number(b[0]);
-      for (int a = 1; a < s.info.dim; ++a) e += " x " + format_number(b[a]);
-      return e;
-    };
-    throw UserError(name + " has box " + edges(s.info.box) + " but " + m.first_name + " has " +
-                    edges(m.first_box) + ": a movie's frames share one box");
-  }
   if (s.size() > 0 && render::needs_velocity(style.field) && !s.has_velocity())
     throw UserError(name + " has no velocities (no velo property); cannot colour by " +
                     render::field_name(style.field));
@@ -242,6 +233,7 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
   m.first_name = m.frames.name(0);
   m.first_dim = s.info.dim;
   m.first_box = s.info.box;
+  m.first_origin = s.info.origin;
   if (!p.plan.follow && s.info.unbounded)
     throw UserError("--camera fixed: " + m.first_name +
                     " is of the unbounded medium, which has no box to frame; use --camera follow");
@@ -278,6 +270,9 @@ FrontMovieResult write_stored_movie(StoredMovie& m, const std::filesystem::path&
       const std::pair<double, std::int64_t> at{s.info.time, s.info.step.value_or(0)};
       if (at < *before) throw OutOfOrder{};
       *before = at;
+      if (!impl.prepared.plan.follow &&
+          !same_box(impl.first_box, impl.first_origin, s.info.box, s.info.origin))
+        throw OutOfOrder{};
     };
     try {
       return render_pass(impl.frames, p, o, pngs, movie, follow, renderer, "movie", false);

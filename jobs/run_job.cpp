@@ -147,14 +147,17 @@ bool write_pictures(const fs::path& dir, const RunOptions& o) {
   const render::View view = picture_view(o);
   for (const auto& s : snaps) {
     if (stop_requested()) return false;
-    render::write_png((dir / "frames" / png_name("", s.info.time)).string(),
-                      renderer.render(s, style, view), render::png_text(s.info, s.size()));
+    const render::Image img = renderer.render(s, style, view);
+    render::write_png((dir / "frames" / png_name("", s.info.time)).string(), img,
+                      render::png_text({&s}, renderer.last().disc_radius_px));
   }
   if (snaps.size() < 2 || stop_requested()) return !stop_requested();
   std::vector<const Snapshot*> all;
   for (const auto& s : snaps) all.push_back(&s);
-  render::write_png((dir / "frames" / "overlay.png").string(), renderer.render(all, style, view),
-                    render::png_text(snaps.back().info, snaps.back().size()));
+  const render::Image img = renderer.render(all, style, view);
+  render::PngText text = render::png_text(snaps.back().info, snaps.back().size());
+  render::add_disc_radius(text, renderer.last().disc_radius_px);
+  render::write_png((dir / "frames" / "overlay.png").string(), img, text);
   return true;
 }
 
@@ -192,9 +195,9 @@ void write_elastic_comparison(const fs::path& dir, const RunOptions& o, const Sn
       s, o.plan.snapshots);
   fs::create_directories(dir / "frames");
   render::Renderer renderer;
-  render::write_png((dir / "frames" / png_name("elastic_", s.info.time)).string(),
-                    renderer.render(s, picture_style(o.plan.physics), picture_view(o)),
-                    render::png_text(s.info, s.size()));
+  const render::Image img = renderer.render(s, picture_style(o.plan.physics), picture_view(o));
+  render::write_png((dir / "frames" / png_name("elastic_", s.info.time)).string(), img,
+                    render::png_text({&s}, renderer.last().disc_radius_px));
 }
 
 // Every snapshot time in one file, read back from the snapshot files (so that a resumed run

@@ -4,6 +4,7 @@
 // life of the process, as a movie keeps its one.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,11 +46,14 @@ PyImage render_snapshots(const pb::object& snapshots, const render::RenderChoice
   for (const auto& s : owned) ptrs.push_back(s.get());
   render::settle_for_snapshots(c, ptrs, "the snapshot");
   PyImage out;
+  double disc_radius_px = 0;
   {
     pb::gil_scoped_release release;
-    out.image = renderer_for(backend).render(ptrs, c.style, c.view);
+    render::Renderer& r = renderer_for(backend);
+    out.image = r.render(ptrs, c.style, c.view);
+    disc_radius_px = r.last().disc_radius_px;
   }
-  out.text = render::png_text(ptrs);
+  out.text = render::png_text(ptrs, disc_radius_px);
   return out;
 }
 
@@ -143,7 +147,7 @@ void bind_render(pb::module_& m) {
          const std::string& scale, std::vector<double> range, std::vector<double> percentiles,
          bool range_per_frame, const std::string& framing, std::vector<double> centre,
          double zoom, double azimuth, double elevation, double distance, double fov,
-         double slab, bool clip, bool show_inactive, bool colorbar, bool time_label, bool legend,
+         std::optional<double> slab, bool clip, bool show_inactive, bool colorbar, bool time_label, bool legend,
          bool scale_bar, int msaa, const std::string& font, const std::string& backend) {
         render::RenderChoices c;
         c.colour_by = color_by;
@@ -169,7 +173,7 @@ void bind_render(pb::module_& m) {
         c.view.elevation = elevation;
         c.view.distance = distance;
         c.view.fov = fov;
-        c.view.slab = slab;
+        c.slab = slab;
         c.view.clip = clip;
         c.style.show_inactive = show_inactive;
         c.no_colorbar = !colorbar;
@@ -190,7 +194,7 @@ void bind_render(pb::module_& m) {
       pb::arg("centre") = std::vector<double>{}, pb::arg("zoom") = def.view.zoom,
       pb::arg("azimuth") = def.view.azimuth, pb::arg("elevation") = def.view.elevation,
       pb::arg("distance") = def.view.distance, pb::arg("fov") = def.view.fov,
-      pb::arg("slab") = def.view.slab, pb::arg("clip") = false,
+      pb::arg("slab") = pb::none(), pb::arg("clip") = false,
       pb::arg("show_inactive") = false, pb::arg("colorbar") = true,
       pb::arg("time_label") = true, pb::arg("legend") = true, pb::arg("scale_bar") = false,
       pb::arg("msaa") = def.style.msaa, pb::arg("font") = def.style.font,

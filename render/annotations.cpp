@@ -1,12 +1,51 @@
 #include "render/annotations.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace gs::render {
+namespace {
+
+// The box's edges (2D: its rectangle) in a colour halfway from the background to the text,
+// painted only on pixels of the bare background, so that the outline passes under every disc
+// and never hides or tints a particle.
+void outline_box(Image& img, const Scene& sc) {
+  const Eigen::AlignedBox3d& b = *sc.box;
+  const int corners = sc.dim == 3 ? 8 : 4;
+  Rgb8 line;
+  for (int k = 0; k < 3; ++k) line[k] = std::uint8_t((sc.palette.background[k] + sc.palette.text[k]) / 2);
+  auto corner = [&](int c) {
+    return Eigen::Vector3d((c & 1) ? b.max().x() : b.min().x(), (c & 2) ? b.max().y() : b.min().y(),
+                           (c & 4) ? b.max().z() : b.min().z());
+  };
+  for (int a = 0; a < corners; ++a)
+    for (int bit = 1; bit < corners; bit <<= 1) {
+      if (a & bit) continue;  // each edge once, from its corner with the bit clear
+      const auto p = sc.camera.to_pixel(corner(a)), q = sc.camera.to_pixel(corner(a | bit));
+      if (!p || !q) continue;
+      const double len = (*q - *p).norm();
+      const int steps = std::max(1, int(std::ceil(2 * len)));
+      for (int s = 0; s <= steps; ++s) {
+        const Eigen::Vector2d at = *p + (*q - *p) * (double(s) / steps);
+        const int x = int(std::floor(at.x())), y = int(std::floor(at.y()));
+        if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+        std::uint8_t* px = img.pixel(x, y);
+        if (px[0] != sc.palette.background[0] || px[1] != sc.palette.background[1] ||
+            px[2] != sc.palette.background[2])
+          continue;
+        for (int k = 0; k < 3; ++k) px[k] = line[k];
+      }
+    }
+}
+
+}  // namespace
 
 Annotations annotate(Image& img, const Scene& sc, OverlayPainter& painter) {
   Annotations a;
   const Style& st = sc.style;
   const OverlayColours oc{sc.palette.text, sc.palette.background};
   const Colormap cmap = picture_colormap(st);
+  if (sc.box) outline_box(img, sc);
   if (st.legend && !sc.legend.empty()) {  // the times of an overlay, or the particle types
     painter.legend(img, sc.legend, oc);
     const int w = painter.legend_width(img.width, img.height, sc.legend);

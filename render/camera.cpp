@@ -22,6 +22,18 @@ bool Camera::visible_3d(const Eigen::Vector3d& p, double r) const {
   return true;
 }
 
+std::optional<Eigen::Vector2d> Camera::to_pixel(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d d = p - origin;
+  if (!perspective)
+    return Eigen::Vector2d(width / 2.0 + d.x() * pixels_per_unit(),
+                           height / 2.0 - d.y() * pixels_per_unit());
+  const Eigen::Vector4d e = view * Eigen::Vector4d(d.x(), d.y(), d.z(), 1);
+  const double depth = -e.z();
+  if (depth < near) return std::nullopt;
+  return Eigen::Vector2d(width / 2.0 + width / (2 * tan_half_x) * e.x() / depth,
+                         height / 2.0 - height / (2 * tan_half_y) * e.y() / depth);
+}
+
 Camera make_camera_2d(const Eigen::AlignedBox3d& fit, double r_max, const View& v) {
   Camera c;
   c.width = v.width, c.height = v.height;

@@ -3,6 +3,7 @@
 // target. Positions are made relative to `origin` in double before they become floats, so
 // unwrapped coordinates far from 0 keep their precision on the GPU.
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -28,6 +29,10 @@ struct Camera {
   Eigen::Vector3d cut_origin = Eigen::Vector3d::Zero();  // the slab or clip plane's point
 
   double pixels_per_unit() const { return width / (2 * half_w); }
+  // Pixels per world unit as a disc is drawn: 2D everywhere, 3D at the orbit centre's distance.
+  double magnification() const {
+    return perspective ? height / (2 * distance * tan_half_y) : pixels_per_unit();
+  }
   // False if a disc or sphere of radius r at world point p cannot show in the picture.
   bool visible(const Eigen::Vector3d& p, double r) const {
     if (perspective) return visible_3d(p, r);
@@ -36,6 +41,8 @@ struct Camera {
     return std::abs(d.x()) <= half_w + r && std::abs(d.y()) <= half_h + r;
   }
   bool visible_3d(const Eigen::Vector3d& p, double r) const;
+  // Where a world point lands in the picture (pixels, x right, y down); nullopt behind the eye.
+  std::optional<Eigen::Vector2d> to_pixel(const Eigen::Vector3d& p) const;
 };
 
 // `fit` is the box to frame (fitted particles or the periodic box), r_max the largest radius.

@@ -79,6 +79,7 @@ void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& 
 
 Field default_field(const Snapshot& s) {
   if (!s.has_velocity()) return s.type.size() == s.size() && s.size() > 0 ? Field::Type : Field::None;
+  if (s.info.kick) return Field::ScaledSpeed;  // ours, with or without its resting particles
   for (std::size_t i = 0; i < s.size(); ++i)
     if (!s.active[i] && s.velocity[i].squaredNorm() == 0) return Field::ScaledSpeed;
   return Field::Speed;

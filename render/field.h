@@ -21,8 +21,8 @@ std::vector<double> field_values(const Snapshot& s, Field f, double* v_rms = nul
 void field_values(const Snapshot& s, Field f, double* v_rms, const std::string& column,
                   std::vector<double>& v);
 
-// scaled-speed for a gas disturbed at rest (a kick: some particles have never moved), speed
-// otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly);
+// scaled-speed for a gas disturbed at rest (a kick: a file ours marks so, SnapshotInfo::kick,
+// or one where some particles have never moved), speed otherwise (a thermal gas, where v_rms is the temperature's and plain speeds read directly);
 // without velocities, type where the file names types (OVITO's default), else none.
 Field default_field(const Snapshot& s);
 

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -158,7 +159,21 @@ std::vector<std::uint8_t> encode_png(const Image& img, const PngText& text,
   return out;
 }
 
-PngText png_text(const std::vector<const Snapshot*>& snaps) {
+void add_disc_radius(PngText& text, double disc_radius_px) {
+  if (disc_radius_px > 0) text.emplace_back(kDiscRadiusKey, format_double(disc_radius_px));
+}
+
+std::optional<double> disc_radius_of(const PngText& text) {
+  for (const auto& [k, v] : text) {
+    if (k != kDiscRadiusKey) continue;
+    char* end = nullptr;
+    const double r = std::strtod(v.c_str(), &end);
+    if (end != v.c_str() && *end == '\0' && std::isfinite(r) && r > 0) return r;
+  }
+  return std::nullopt;
+}
+
+PngText png_text(const std::vector<const Snapshot*>& snaps, double disc_radius_px) {
   GS_CHECK(!snaps.empty());
   PngText text = png_text(snaps.front()->info, snaps.front()->size());
   if (snaps.size() > 1) {
@@ -170,6 +185,7 @@ PngText png_text(const std::vector<const Snapshot*>& snaps) {
     for (auto& [k, v] : text)
       if (k == "Time") v = times;
   }
+  add_disc_radius(text, disc_radius_px);
   return text;
 }
 

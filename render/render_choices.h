@@ -2,9 +2,11 @@
 // The choices of `grainshock render` in the words its flags take (colour field, scale, framing,
 // range, ...), checked and turned into a Style and a View. The command and the Python module's
 // render() both go through here, so the same words draw the same pixels.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "render/camera.h"
 #include "render/gl_context.h"
 #include "render/style.h"
 #include "render/view.h"
@@ -24,14 +26,14 @@ struct RenderChoices {
   // Filled by settle_choices() from the words above; the fields without a word (range per frame,
   // show inactive, scale bar, msaa, font, width, height, zoom, the 3D camera) are set directly.
   Style style;
-  // A kick's shell is hollow, so drawn whole it shows only its outer skin; the slab shows the
-  // band itself (the default of `movie` and of a run's pictures too).
-  View view = [] {
-    View v;
-    v.slab = 6;
-    return v;
-  }();
+  View view;
+  // 3D: the slab's thickness (0: none). Unset, a kick's snapshot gets kKickSlab: its shell is
+  // hollow, so drawn whole it shows only its outer skin (the default of `movie` and of a run's
+  // pictures too); others' files are drawn whole, as OVITO draws them until a Slice is added.
+  std::optional<double> slab;
 };
+
+inline constexpr double kKickSlab = 6;
 
 // Checks every word and number before any file is read or GL context made (UserError naming
 // the flag) and fills c.style and c.view from them; returns the GL backend asked for.
@@ -42,5 +44,10 @@ Backend settle_choices(RenderChoices& c);
 // decided by the first snapshot, a name it lacks refused naming `first_file`).
 void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& snaps,
                           const std::string& first_file);
+
+// 3D with a slab or clip: how many of the particles the picture would show the cut kept, as
+// "the slab 6 thick through the centre kept 117 of 300 particles (--slab 0 draws all)"; empty when
+// nothing was cut away. `cam` is the camera the picture was drawn with.
+std::string cut_note(const Style& style, const Snapshot& s, const Camera& cam);
 
 }  // namespace gs::render

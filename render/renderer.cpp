@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -637,6 +638,9 @@ Image Renderer::draw(const Scene& sc) {
   m.info.camera = cam;
   m.info.drawn = sc.sprites.size();
   m.info.v_rms = sc.v_rms;
+  float r_min = std::numeric_limits<float>::infinity();
+  for (const Sprite& sp : sc.sprites) r_min = std::min(r_min, sp.r);
+  if (!sc.sprites.empty()) m.info.disc_radius_px = r_min * cam.magnification();
 
   // 2D discs below splat_below_px in radius are drawn on the CPU after readback: llvmpipe spends
   // about half a microsecond of CPU per primitive however small, so a paper-size frame (2.5e5

@@ -26,6 +26,9 @@ struct RenderInfo {
   Rect inset;                // empty if none was drawn
   std::vector<Rect> panels;  // every overlay's panel (what a measure of the scene leaves out)
   double v_rms = 0;          // the scale of a scaled field
+  // The smallest drawn disc's radius in pixels (3D: at the orbit centre's distance), 0 when
+  // nothing was drawn: below 1.5 px a golden comparison cannot see one particle move.
+  double disc_radius_px = 0;
 };
 
 class Renderer {

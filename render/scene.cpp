@@ -321,12 +321,6 @@ Camera frame(const Subject& sub, const View& view, const Reserve& reserve) {
                       : frame_2d(sub.fit, sub.r_max, view, reserve);
 }
 
-// Pixels per world unit (3D: at the orbit centre's distance): the larger, the better framed.
-double magnification(const Camera& cam) {
-  return cam.perspective ? cam.height / (2 * cam.distance * cam.tan_half_y)
-                         : cam.pixels_per_unit();
-}
-
 // Where the subject lies in the picture (pixels, y down), clipped to it. 2D: the region with the
 // particles' radius (a shot: its box); 3D: the box of the bounding sphere's outline, widened by
 // a twentieth for the stretch of a sphere seen off the axis.
@@ -433,7 +427,7 @@ Camera frame_clear_of(const Subject& sub, const View& view, const Reserve& asked
             continue;
           const Reserve r{view.width - open.x1, open.y0, open.x0, view.height - open.y1, asked.shot};
           const Camera tried = frame(sub, view, r);
-          const double m = magnification(tried);
+          const double m = tried.magnification();  // the larger, the better framed
           if (m > best && panels_of.clear(content_rect(sub, tried, view, asked.shot), tried))
             best = m, cam = tried;
         }
@@ -629,7 +623,13 @@ Scene build_scene(const std::vector<const Snapshot*>& snaps, const Style& style,
   const BoxWrap wrap(snaps, view.framing, sc.dim);
   for (const Snapshot* s : snaps)
     for (double r : s->radius) sc.r_max = std::max(sc.r_max, r);
-  const Subject sub = subject(snaps, framed_region(snaps, wrap), wrap.on(), sc.dim, sc.r_max);
+  const Subject sub =
+      subject(snaps, view.region && wrap.on() ? *view.region : framed_region(snaps, wrap),
+              wrap.on(), sc.dim, sc.r_max);
+  if (style.box_outline && snaps.front()->info.has_box()) {
+    const SnapshotInfo& in = snaps.front()->info;
+    sc.box = Eigen::AlignedBox3d(in.origin, in.origin + in.box);
+  }
   // Overlays never lie over particles: an explicitly centred view (not a shot) has none reserved.
   const bool placed = !view.centre || reserve.shot;
   Panels panels;

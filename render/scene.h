@@ -56,6 +56,7 @@ struct Scene {
   std::string time_text;                  // top-left label
   std::vector<std::pair<Rgb8, std::string>> legend;  // overlay: colour and time
   std::optional<InsetData> inset;
+  std::optional<Eigen::AlignedBox3d> box;  // the box outline to draw (Style::box_outline)
 };
 
 // Memory a scene's building fills and gives back, kept by a caller that builds one scene after

@@ -51,6 +51,9 @@ struct Style {
   bool scale_bar = false;     // a length in particle diameters (3D: at the centre's distance)
   bool legend = true;         // multi-snapshot overlay: one colour per time
   bool inset = false;         // density and mean scaled speed against distance, bottom left
+  // The periodic box's edges, in a faint line where no particle is drawn (a movie of a box
+  // that moves, whose frames each show their own box in a camera that frames them all).
+  bool box_outline = false;
   int msaa = 4;               // samples per pixel for 3D spheres (2D discs antialias in the shader)
   double splat_below_px = 2;  // 2D discs of smaller radius (pixels) are drawn on the CPU
   bool occlusion_cull = true;  // 3D: skip spheres hidden behind nearer ones (exact)

@@ -2,6 +2,7 @@
 // The picture's size and camera. 2D: fitted to the active particles, the whole box, or an
 // explicit centre and zoom. 3D: a perspective orbit camera with an optional slab cut.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 
 namespace gs::render {
@@ -12,6 +13,9 @@ struct View {
   int width = 1920, height = 1080;
   Framing framing = Framing::Fit;
   double margin = 0.08;  // fraction of the fitted extent left free on each side
+  // Box framing: frame this region instead of the snapshot's box (a fixed movie camera over a
+  // box that moves frames the union of its boxes).
+  std::optional<Eigen::AlignedBox3d> region;
   // Explicit framing: the world point at the picture's centre, and a magnification relative to
   // the fitted (or box) framing.
   std::optional<Eigen::Vector3d> centre;

@@ -911,6 +911,7 @@ void Engine<D>::snapshot_info(Snapshot& s) const {
   s.info.speed = config_.speed;
   s.info.seed = config_.seed;
   s.info.unbounded = medium_ != nullptr;
+  s.info.kick = config_.initial == Initial::Kick;
 }
 
 template <int D>

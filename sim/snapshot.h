@@ -32,6 +32,11 @@ struct SnapshotInfo {
   // of it never made, so there is no box to frame. Set by the engine, written and read as the XYZ
   // key Medium=unbounded and the GSD chunk log/Unbounded.
   bool unbounded = false;
+  // A snapshot of a kick (a gas at rest, disturbed once: --initial kick) made by the engine. Its
+  // colours are v/v_rms whether or not its resting particles were written (a file of the active
+  // ones alone has none at rest to tell it by). Written and read as the XYZ key Initial=kick and
+  // the GSD chunk log/Kick; false for others' files.
+  bool kick = false;
 
   // A periodic cube of this side in the first `dim` axes (set `dim` first).
   void set_cubic_box(double side) {

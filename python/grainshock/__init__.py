@@ -37,7 +37,8 @@ def render(snapshots, *, color_by="auto", width=1920, height=1080, inset=None, *
     inset (None: as the command decides, True/False: --inset/--no-inset), colormap, background
     ("light"/"dark"), scale ("auto"/"lin"/"log"), range (MIN, MAX), percentiles (LOW, HIGH),
     range_per_frame, framing ("fit"/"box"), centre, zoom, azimuth, elevation, distance, fov,
-    slab, clip, show_inactive, colorbar, time_label, legend, scale_bar, msaa, font, backend.
+    slab (None: 6 for a kick's snapshot, 0 for others' files), clip, show_inactive, colorbar,
+    time_label, legend, scale_bar, msaa, font, backend.
     snapshots may also be a path of a snapshot file (or a list of them): its last frame is
     drawn, as grainshock.read and `grainshock render` take it.
     Returns an Image (.array, .save(path); a notebook shows it).

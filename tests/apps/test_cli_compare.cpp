@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <optional>
 
 #include "render/image_compare.h"
 #include "render/movie_writer.h"
@@ -219,6 +221,69 @@ TEST(CliCompare, MovieWithOneChangedFrameOrFewerFramesFails) {
   r = grainshock(compare(ref.string() + " " + diff.string()));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("is a movie but"), std::string::npos) << r.err;
+}
+
+// A 2D periodic box of side `side` holding per_side^2 discs of radius 0.5 on a jittered grid,
+// in extended XYZ; disc `moved` shifted by `dx` along x.
+fs::path box_of_discs(const fs::path& path, int per_side, double side, int moved, double dx) {
+  std::ofstream f(path);
+  f << per_side * per_side << "\nLattice=\"" << side << " 0 0 0 " << side
+    << " 0 0 0 1\" Properties=species:S:1:pos:R:3 Dim=2 pbc=\"T T F\"\n";
+  const double step = side / per_side;
+  for (int i = 0; i < per_side * per_side; ++i) {
+    const double jitter = 0.2 * step * std::sin(1.7 * i);
+    const double x = (i % per_side + 0.5) * step + jitter + (i == moved ? dx : 0);
+    f << "A " << x << " " << (i / per_side + 0.5) * step - jitter << " 0\n";
+  }
+  return path;
+}
+
+// A box drawn whole so small that its discs are under a pixel: compare says, in its line, that
+// it cannot see one particle move (from the radius `render` records in the PNG's text), and
+// says nothing of the kind once the picture is zoomed to discs of several pixels, where the
+// same move is not alike.
+TEST(CliCompare, SaysWhenDiscsAreTooSmallToSeeOneParticle) {
+  const fs::path dir = scratch_dir("blind");
+  fs::create_directories(dir);
+  // 40 x 40 discs in a box of side 80 drawn whole at 160x120: 0.64 px radius.
+  const fs::path a = box_of_discs(dir / "a.xyz", 40, 80, 820, 1.0);
+  const fs::path b = box_of_discs(dir / "b.xyz", 40, 80, 820, 0.0);
+  const std::string draw = " --color-by none --framing box --width 160 --height 120 --out ";
+  for (const char* name : {"a", "b"}) {
+    const auto r = grainshock("render " + (dir / name).string() + ".xyz" + draw +
+                              (dir / name).string() + ".png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: discs of 0."), std::string::npos) << r.err;
+  }
+  const std::optional<double> px =
+      render::disc_radius_of(render::read_png_text((dir / "a.png").string()));
+  ASSERT_TRUE(px.has_value());
+  EXPECT_GT(*px, 0.6);
+  EXPECT_LT(*px, 0.9);
+  auto r = grainshock(compare((dir / "a.png").string() + " " + (dir / "b.png").string()));
+  EXPECT_NE(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.out.find("alike: blind to one particle: both have discs of 0."), std::string::npos)
+      << r.out;
+  // Against a picture that records discs large enough, only the small one is named.
+  render::Image big = render::read_png((dir / "b.png").string());
+  render::write_png((dir / "big.png").string(), big, {{render::kDiscRadiusKey, "3"}});
+  r = grainshock(compare((dir / "a.png").string() + " " + (dir / "big.png").string()));
+  EXPECT_NE(r.out.find("blind to one particle: " + (dir / "a.png").string() + " has discs of 0."),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("big.png has"), std::string::npos) << r.out;
+
+  // The same move seen at 3 px radius: not alike, and nothing said of blindness.
+  const std::string zoomed = " --color-by none --framing box --centre 41 41 --zoom 4 --width 160 --height 120 "
+                             "--out ";
+  for (const char* name : {"a", "b"}) {
+    const auto z = grainshock("render " + (dir / name).string() + ".xyz" + zoomed +
+                              (dir / name).string() + "_zoom.png");
+    ASSERT_EQ(z.exit_code, 0) << z.err;
+  }
+  r = grainshock(compare((dir / "a_zoom.png").string() + " " + (dir / "b_zoom.png").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.out.find("blind"), std::string::npos) << r.out;
 }
 
 }  // namespace

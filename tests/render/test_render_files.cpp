@@ -10,9 +10,12 @@
 #include <fstream>
 
 #include "io/gsd.h"
+#include "io/snapshot_file.h"
 #include "render/field.h"
+#include "render/image_compare.h"
 #include "render/overlay.h"
 #include "render/png.h"
+#include "render/render_choices.h"
 #include "render/scene.h"
 #include "sim/error.h"
 #include "tests/apps/cli_test_util.h"
@@ -230,6 +233,116 @@ TEST(RenderFiles, MovieOfStoredFilesByAColumn) {
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_NE(r.err.find("other.xyz' has no column 'c_pe'"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+// One auto colouring for a kick: a snapshot file of the active particles alone (no particle at
+// rest to tell a kick by) is coloured by v/v_rms as the whole one is, so `render` of either file
+// and the run's own --png frame are alike. Before the files said Initial=kick, the active file
+// was drawn as raw speed (log) and was not alike.
+TEST(RenderFiles, AKicksSnapshotIsColouredAlikeWithOrWithoutItsRestingParticles) {
+  const fs::path all = scratch_dir("kick_all"), active = scratch_dir("kick_active");
+  const std::string size = " --width 480 --height 360";
+  const std::string run = "run --dim 2 --particles 3000 --t-max 300 --restitution 0.5 --png "
+                          "--quiet" + size + " --out ";
+  ASSERT_EQ(test::grainshock(run + all.string()).exit_code, 0);
+  ASSERT_EQ(test::grainshock(run + active.string() + " --snapshot-particles active").exit_code, 0);
+  const std::string snap = "/snapshots/tsim_300.xyz";
+  const Snapshot moving = read_snapshot(active.string() + snap);
+  ASSERT_TRUE(std::all_of(moving.active.begin(), moving.active.end(), [](auto a) { return a; }));
+  EXPECT_TRUE(moving.info.kick);
+  EXPECT_EQ(default_field(moving), Field::ScaledSpeed);
+  std::vector<Image> drawn;
+  for (const fs::path& dir : {all, active}) {
+    const fs::path png = dir / "render.png";
+    const auto r = render(dir.string() + snap + size + " --out " + png.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    drawn.push_back(read_png(png.string()));
+  }
+  const ImageComparison c = compare_images(drawn[0], drawn[1]);
+  EXPECT_TRUE(c.match()) << c.differing << " px differ in " << c.blobs << " blobs";
+  for (const fs::path& dir : {all, active}) {
+    const fs::path frame = dir / "frames" / "tsim_300.png";
+    ASSERT_TRUE(fs::exists(frame)) << frame;
+    const ImageComparison f = compare_images(read_png(frame.string()), drawn[1]);
+    EXPECT_TRUE(f.match()) << frame << ": " << f.differing << " px differ in " << f.blobs
+                           << " blobs";
+  }
+}
+
+std::size_t times_said(const std::string& err, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t p = err.find(what); p != std::string::npos; p = err.find(what, p + 1)) ++n;
+  return n;
+}
+
+// --unwrap on a file with nothing to unwrap by (a dump of x y z, an extended XYZ file) says so,
+// once; on a dump with image flags it unwraps without a word. It used to say nothing.
+TEST(RenderFiles, UnwrapSaysSoOnceWhenTheFileHasNoImageFlags) {
+  const fs::path dir = scratch_dir("unwrap");
+  const std::string out = " --color-by none --width 200 --height 100 --out " +
+                          (dir / "u.png").string();
+  for (const std::string& file :
+       {dump_without_velocities(dir).string(), asset("ovito_2d.xyz"),
+        asset("shrinking_box_2d.lammpstrj")}) {
+    const auto r = render(file + " --unwrap" + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(times_said(r.err, kNothingToUnwrap), 1u) << file << ": " << r.err;
+    EXPECT_EQ(times_said(render(file + out).err, "--unwrap"), 0u) << file;
+  }
+  // Its first frame has image flags (its second has none, and says so).
+  const auto r = render(asset("custom_3d.lammpstrj") + " --frame 0 --unwrap" + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(times_said(r.err, kNothingToUnwrap), 0u) << r.err;
+}
+
+// 300 atoms at random in a 3D box of 20 diameters, as extended XYZ without velocities.
+fs::path atoms_3d(const fs::path& dir) {
+  fs::create_directories(dir);
+  std::ofstream f(dir / "atoms.xyz");
+  f << "300\nLattice=\"20 0 0 0 20 0 0 0 20\" Properties=species:S:1:pos:R:3 pbc=\"T T T\"\n";
+  unsigned x = 12345;
+  auto next = [&] { return (x = x * 1103515245u + 12345u) / 4294967296.0 * 20; };
+  for (int i = 0; i < 300; ++i) {
+    const double a = next(), b = next(), c = next();
+    f << "Ar " << a << " " << b << " " << c << "\n";
+  }
+  return dir / "atoms.xyz";
+}
+
+// Others' 3D files are drawn whole by default, as OVITO draws them (a slab of 6 used to keep
+// 117 of 300 atoms of a 20-diameter box without a word); a slab asked for says what it left out;
+// a kick's snapshot keeps its slab, and says so too.
+TEST(RenderFiles, A3dFileIsDrawnWholeUnlessASlabIsAskedForWhichSaysWhatItLeftOut) {
+  const fs::path dir = scratch_dir("slab");
+  const fs::path atoms = atoms_3d(dir);
+  const std::string out = " --width 200 --height 150 --out " + (dir / "a.png").string();
+  auto r = render(atoms.string() + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(times_said(r.err, "the slab"), 0u) << r.err;
+  ASSERT_EQ(render(atoms.string() + " --slab 0 --width 200 --height 150 --out " +
+                   (dir / "whole.png").string())
+                .exit_code,
+            0);
+  EXPECT_EQ(read_png((dir / "a.png").string()).rgba, read_png((dir / "whole.png").string()).rgba)
+      << "the default is not the whole box";
+  r = render(atoms.string() + " --slab 6" + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.err.find("the slab 6 thick through the centre kept ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const long kept = std::stol(r.err.substr(at + 41));
+  EXPECT_GT(kept, 50);  // a slab of 6 of a box of 20: about 3/10 of them
+  EXPECT_LT(kept, 200);
+  EXPECT_NE(r.err.find(" of 300 particles (--slab 0 draws all)"), std::string::npos) << r.err;
+  EXPECT_EQ(times_said(r.err, "the slab"), 1u) << r.err;
+
+  const fs::path kick = scratch_dir("slab_kick");
+  ASSERT_EQ(test::grainshock("run --dim 3 --particles 3000 --t-max 100 --quiet --out " +
+                             kick.string())
+                .exit_code,
+            0);
+  r = render((kick / "snapshots" / "tsim_100.xyz").string() + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("the slab 6 thick through the centre kept "), std::string::npos) << r.err;
 }
 
 // Each bad file: exit 1, one line that names the file and where, and no PNG.
