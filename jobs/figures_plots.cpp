@@ -218,7 +218,7 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
     }
   }
   write_csv(t, out.dir / "fig3_active_energy.csv");
-  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 750);
+  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 800);
   gp += theory;
   gp += std::string(
             "set multiplot layout 1,2 title 'Fig. 3: mean active particles and kinetic energy, "
@@ -226,9 +226,9 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
             "set samples 500\nset logscale xy\nset xlabel '") +
         kPaperTimeLabel +
         "'\nset format y '10^{%L}'\n"
-        "set format x '10^{%L}'\nset key top left font ',9'\n"
+        "set format x '10^{%L}'\nset key below maxrows 4 font ',9'\nset bmargin 8\n"
         "set title '(a) ⟨N_t⟩ (shifted)'\nset ylabel '⟨N_t⟩ × 10^k'\n" +
-        plot_n + "\nset title '(b) ⟨E_t⟩ (shifted)'\nset ylabel '⟨E_t⟩ × 10^k'\nset key bottom left\n" +
+        plot_n + "\nset title '(b) ⟨E_t⟩ (shifted)'\nset ylabel '⟨E_t⟩ × 10^k'\n" +
         plot_e + "\nunset multiplot\n";
   return out.plot("fig3_active_energy.gp", gp);
 }
@@ -547,9 +547,9 @@ std::string fig6(const Out& out, const Crossovers& x) {
   write_csv(p, out.dir / pairs);
   std::string gp = gnuplot_preamble(base, 1500, 700);
   gp += a.functions +
-        "set multiplot layout 1,2 title 'Fig. 6: the crossover t_{c1} ~ (1 - r^2)^{-φ_1} "
+        "set multiplot layout 1,2 title 'Fig. 6: the crossover t_{c1} ∝ (1 - r^2)^{-φ_1} "
         "(paper: φ_1 = 2.25 in 2D, 3.0 in 3D)'\n"
-        "set logscale x\nset xlabel '1 - r^2'\nset key below font ',9'\nset bmargin 9\n";
+        "set logscale x\nset xlabel '1 - r^2'\nset key below font ',9' maxrows 4\nset bmargin 8\n";
   gp += "set title '(a) t_{c1} by the intersection rule'\nset logscale y\nset ylabel 't_{c1} (" +
         std::string(kPaperTimeLabel).substr(3) + "'\n" +
         (a.plot.empty() ? "set label 1 'no t_{c1} found in these runs' at graph 0.5, 0.5 center\n"
@@ -584,8 +584,8 @@ std::string fig_inner_edge(const std::vector<CaseResult>& all, const Out& out) {
   std::string gp = gnuplot_preamble(base, 900, 600);
   if (t.rows() == 0)
     return out.plot(base + ".gp", gp + no_data_plot(base + ".csv", "no band at the last snapshot"));
-  gp += "set title 'Speed of the inner half of the band over the outer half (last snapshot; "
-        "paper: faster particles on the inside edge)'\n"
+  gp += "set title 'Fig. 12: mean speed of the band inside its median radius over outside it\\n"
+        "(last snapshot; paper: faster particles on the inside edge)'\n"
         "set xlabel 'coefficient of restitution r'\nset ylabel '⟨|v|⟩ inside / ⟨|v|⟩ outside "
         "the median R'\nset xrange [0:1.05]\nset key top right\nset offsets 0, 0, graph 0.1, "
         "graph 0.05\n"
