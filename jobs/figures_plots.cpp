@@ -492,37 +492,44 @@ std::string phi1_pairs_panel(const std::vector<CrossoverSet>& tc1, const std::st
     auto pair_x = [&](const std::string& a, const std::string& b) {
       return std::sqrt(control(a) * control(b));
     };
+    const std::string ds = std::to_string(set.d);
+    const std::string colour = set.d == 2 ? "black" : "#a00000";
+    // One clause per kind that has points: a key entry without one says nothing.
+    auto clause = [&](int kind, const std::string& style, const std::string& title) {
+      plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + csv + "' skip 1 using ($1==" +
+              ds + " && $2==" + std::to_string(kind) + " ? $3 : 1/0):" + style + " lc rgb '" +
+              colour + "' title '" + title + "'";
+    };
+    std::size_t rows = t.rows();
     for (const Phi1Reading& e : set.energy)
       if (std::isnan(e.level) && std::isfinite(e.phi)) {
         const std::vector<double> row = {double(set.d), 0, pair_x(e.from, e.to), e.phi, e.ci_lo,
                                          e.ci_hi};
         t.add_row(row);
       }
-    for (const LocalCrossoverExponent& e : set.local) {
-      const std::vector<double> row = {double(set.d), 1, pair_x(e.from, e.to), e.phi, e.ci_lo,
-                                       e.ci_hi};
-      t.add_row(row);
-    }
+    if (t.rows() > rows)
+      clause(0, "4:5:6 with yerrorbars pt 7 ps 1.2", "d = " + ds + ": E_t/E_0 collapse");
+    rows = t.rows();
+    for (const LocalCrossoverExponent& e : set.local)
+      if (std::isfinite(e.phi)) {
+        const std::vector<double> row = {double(set.d), 1, pair_x(e.from, e.to), e.phi, e.ci_lo,
+                                         e.ci_hi};
+        t.add_row(row);
+      }
+    if (t.rows() > rows)
+      clause(1, "4:5:6 with yerrorbars pt 6 ps 1.2",
+             "d = " + ds + ": t_{c1} ratio (intersection rule)");
     const Comparison declared =
         phi1_energy_comparison(set.d, set.energy, std::numeric_limits<double>::quiet_NaN());
-    const Phi1Reading* last =
-        nearest_limit_reading(set.energy, std::numeric_limits<double>::quiet_NaN());
-    const std::string ds = std::to_string(set.d);
-    const std::string colour = set.d == 2 ? "black" : "#a00000";
-    std::string sel = "($1==" + ds + " && $2==";
-    plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + csv + "' skip 1 using " + sel +
-            "0 ? $3 : 1/0):4:5:6 with yerrorbars pt 7 ps 1.2 lc rgb '" + colour +
-            "' title 'd = " + ds + ": E_t/E_0 collapse', '' skip 1 using " + sel +
-            "1 ? $3 : 1/0):4:5:6 with yerrorbars pt 6 ps 1.2 lc rgb '" + colour + "' title 'd = " +
-            ds + ": t_{c1} ratio (intersection rule)'";
-    if (last) {
+    if (const Phi1Reading* last =
+            nearest_limit_reading(set.energy, std::numeric_limits<double>::quiet_NaN())) {
       const std::vector<double> row = {double(set.d), 2, pair_x(last->from, last->to), last->phi,
                                        last->ci_lo, last->ci_hi};
       t.add_row(row);
-      plot += ", '' skip 1 using " + sel + "2 ? $3 : 1/0):4 with points pt 65 ps 3 lw 2 lc rgb '" +
-              colour + "' title 'd = " + ds + ", declared (the verdict): φ_1 = " +
-              figure_number(last->phi, 3) + " [" + figure_number(last->ci_lo, 3) + ", " +
-              figure_number(last->ci_hi, 3) + "], " + last->from + " and " + last->to + "'";
+      clause(2, "4 with points pt 65 ps 3 lw 2",
+             "d = " + ds + ", declared (the verdict): φ_1 = " + figure_number(last->phi, 3) +
+                 " [" + figure_number(last->ci_lo, 3) + ", " + figure_number(last->ci_hi, 3) +
+                 "], " + last->from + " and " + last->to);
     }
     lines += ", \\\n     " + format_double(declared.theory) + " with lines " +
              theory_style(set.d) + " title 'paper, d = " + ds + ": φ_1 = " +
@@ -549,7 +556,7 @@ std::string fig6(const Out& out, const Crossovers& x) {
   gp += a.functions +
         "set multiplot layout 1,2 title 'Fig. 6: the crossover t_{c1} ∝ (1 - r^2)^{-φ_1} "
         "(paper: φ_1 = 2.25 in 2D, 3.0 in 3D)'\n"
-        "set logscale x\nset xlabel '1 - r^2'\nset key below font ',9' maxrows 4\nset bmargin 8\n";
+        "set logscale x\nset xlabel '1 - r^2'\nset key below font ',9'\n";
   gp += "set title '(a) t_{c1} by the intersection rule'\nset logscale y\nset ylabel 't_{c1} (" +
         std::string(kPaperTimeLabel).substr(3) + "'\n" +
         (a.plot.empty() ? "set label 1 'no t_{c1} found in these runs' at graph 0.5, 0.5 center\n"
