@@ -591,8 +591,7 @@ std::string fig_inner_edge(const std::vector<CaseResult>& all, const Out& out) {
   std::string gp = gnuplot_preamble(base, 900, 600);
   if (t.rows() == 0)
     return out.plot(base + ".gp", gp + no_data_plot(base + ".csv", "no band at the last snapshot"));
-  gp += "set title 'Fig. 12: mean speed of the band inside its median radius over outside it\\n"
-        "(last snapshot; paper: faster particles on the inside edge)'\n"
+  gp += "set title 'Fig. 12: inner over outer mean speed of the band, last snapshot (paper: faster inside)'\n"
         "set xlabel 'coefficient of restitution r'\nset ylabel '⟨|v|⟩ inside / ⟨|v|⟩ outside "
         "the median R'\nset xrange [0:1.05]\nset key top right\nset offsets 0, 0, graph 0.1, "
         "graph 0.05\n"
@@ -631,7 +630,7 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
   gp += "set multiplot layout 2,2 title 'Local slopes in 3D against the momentum-conserving "
         "(alpha = 1/4, dashed) and pressure-driven (alpha = 2/7, dotted) snowplows'\n"
         "set logscale x\nset format x '10^{%L}'\nset xlabel '" + std::string(kPaperTimeLabel) + "'\n"
-        "set key bottom right font ',8' samplen 2\n";
+        "set key top right font ',8' samplen 2\n";
   for (std::size_t q = 0; q < std::size(panels); ++q) {
     const std::string name = quantity_name(panels[q]);
     gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
