@@ -23,6 +23,9 @@ namespace gs {
 inline constexpr double kFig1aPaperTimes[] = {5000, 10000, 20000, 50000};
 inline constexpr double kFig1bPaperTime = 25000;
 inline constexpr std::int64_t kFig1Particles = 250000;
+// The times of the paper's scaling collapses (r = 0.1) in its time unit: Fig. 4 (2D), Fig. 5 (3D).
+inline constexpr double kFig4PaperTimes[] = {25000, 37500, 50000};
+inline constexpr double kFig5PaperTimes[] = {30000, 50000, 75000};
 
 // How a measured number is set against the paper's or the theory's.
 enum class Relation {

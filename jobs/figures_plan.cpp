@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iterator>
+#include <span>
 
 #include "analysis/paper.h"
 #include "sim/format.h"
@@ -267,6 +268,21 @@ std::vector<double> collapse_times(int d, double t_max) {
                 : std::vector<double>{0.4 * t_max, t_max * 2 / 3, t_max};
 }
 
+// The collapse case's figure times: the paper's in simulation units if the run reaches them
+// (then t_max is a snapshot too, if later), else collapse_times.
+void set_collapse_times(FigureCase& c) {
+  const PhysicsConfig& p = c.spec.physics;
+  std::vector<double> paper;
+  for (double tp : p.dim == 2 ? std::span<const double>(kFig4PaperTimes)
+                              : std::span<const double>(kFig5PaperTimes))
+    paper.push_back(tp / p.paper_time(1.0));
+  c.paper_times = paper.back() <= p.t_max;
+  c.figure_times = c.paper_times ? paper : collapse_times(p.dim, p.t_max);
+  c.spec.snapshot_times = c.figure_times;
+  if (c.spec.snapshot_times.back() < p.t_max) c.spec.snapshot_times.push_back(p.t_max);
+  c.spec = checked(c.spec);
+}
+
 }  // namespace
 
 const char* to_string(FiguresMode m) {
@@ -310,6 +326,7 @@ FiguresPlan figures_plan(FiguresMode mode, std::uint64_t seed, bool long_3d, boo
       name.append(std::to_string(d)).append("_r").append(format_number(s.r));
       add(name, e, CaseRole::Paper);
       plan.cases.back().collapse = &s == &sizes.front();  // the lists start at r = 0.1
+      if (plan.cases.back().collapse) set_collapse_times(plan.cases.back());
     }
   }
   {

@@ -39,6 +39,12 @@ struct FigureCase {
   // The case of the paper's Figs. 4 and 5 (its smallest r in each dimension): the collapse of
   // P(R,t) and P(v,t) is read on it.
   bool collapse = false;
+  // The snapshot times Figs. 4 and 5 draw: the paper's (kFig4PaperTimes, kFig5PaperTimes) in
+  // simulation units when the run reaches them (paper_times), else the paper's in ratio ending at
+  // t_max. A run longer than the paper's times also has a snapshot at t_max, where the readings
+  // of the last snapshot (packing, inner edge) are made.
+  std::vector<double> figure_times;
+  bool paper_times = false;
   // Limit: the time from which E_t's local slope is expected to be on its plateau (the plan's
   // comment says where each comes from); t_max lies at least half a decade past it, the span
   // the plateau rule needs (analysis/effective_exponent.h). 0: not run to its plateau (3D

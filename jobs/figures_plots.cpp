@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <span>
 
 #include "analysis/quantile.h"
 #include "analysis/snowplow.h"
@@ -30,6 +31,10 @@ struct Out {
   }
 };
 
+// Every time axis is in the paper's unit, its initial mean collision time 1/(v_0 n^(1/d)):
+// t_paper = t v_0 n^(1/d), 0.5 t in 2D and 0.63 t in 3D at n = 0.25 (PhysicsConfig::paper_time).
+constexpr const char* kPaperTimeLabel = "t (paper units 1/(v_0 n^{1/d}))";
+
 std::string rtext(double r) {
   return format_number(r);
 }
@@ -51,6 +56,10 @@ std::string render_fig1(const Fig1Snapshots& s, const fs::path& dir) {
     view.height = 1000;
     render::Style style;
     style.scale_bar = true;
+    // Fig. 1b's colour bar: speeds in units of the kick's, the paper's v_0 (the plan kicks at
+    // speed 1, so the engine's speeds are in v_0); lengths are in diameters, the scale bar's.
+    GS_CHECK(s.b.info.speed.value_or(1.0) == 1.0);
+    style.bar_label = "speed |v| / v_0";
     std::vector<const Snapshot*> ptrs;
     for (const auto& x : s.a) ptrs.push_back(&x);
     render::write_png((dir / "fig1a_overlay_r0.1.png").string(), renderer.render(ptrs, style, view),
@@ -125,17 +134,38 @@ std::string fig2(const std::vector<CaseResult>& all, const Out& out) {
   std::string gp = gnuplot_preamble("fig2_anisotropy", 900, 650);
   gp +=
       "set title 'Fig. 2: anisotropy index A(t) in 2D (mean over realisations)'\n"
-      "set logscale xy\nset xlabel 't (paper units 1/(v_0 n^{1/d}))'\nset ylabel 'A(t)'\n"
+      "set logscale xy\nset xlabel '" + std::string(kPaperTimeLabel) + "'\nset ylabel 'A(t)'\n"
       "set yrange [*:1]\nset format y '10^{%L}'\nset key bottom left\n" +
       plot + "\n";
   return out.plot("fig2_anisotropy.gp", gp);
 }
 
+// The theory's line y = A t^b through the last decade of a curve (t in paper units): A is the
+// least-squares prefactor with b fixed, mean(ln y - b ln t), so that the line follows the late
+// curve rather than hanging on its last point. NaN if no positive point lies there.
+double late_prefactor(std::span<const double> t, std::span<const double> y, double b) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t.back() / 10 && y[i] > 0) {
+      sum += std::log(y[i]) - b * std::log(t[i]);
+      ++n;
+    }
+  return n > 0 ? std::exp(sum / n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Fig. 3 as the paper's: <N_t> (a) and <E_t> (b) of r = 0.1, 0.5, 0.8, the 2D curves below and
+// the 3D ones above, each shifted up a decade from the one before it "for the sake of clarity"
+// (the key gives the factor), with the theory's exponent drawn along each curve over its last
+// two decades, its prefactor fitted over the last decade (late_prefactor).
 std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
   Table t;
   for (const char* n : {"d", "r", "t", "t_paper", "N", "N_sem", "E", "E_sem"}) t.add_column(n, {});
   std::string plot_n, plot_e, theory;
+  int k = 0;  // the curve's place from the bottom: shifted by 10^k
   for (int d : {2, 3}) {
+    const double a = 1.0 / (d + 1);
+    bool titled = false;
     for (const CaseResult* c : cases_of(all, d, false)) {
       const Table ts = c->sums.timeseries();
       const double r = c->plan->spec.physics.restitution;
@@ -153,49 +183,53 @@ std::string fig3(const std::vector<CaseResult>& all, const Out& out) {
                                          ts.column("energy_sem")[i]};
         t.add_row(row);
       }
+      const std::string shift = "1e" + std::to_string(k);
       const std::string sel = "($1==" + std::to_string(d) + " && $2==" + rtext(r) + " ? $4 : 1/0)";
       // Colour by r, open points in 2D and filled ones in 3D.
       // 3D takes colours 4-6, so that no 2D and 3D curve share one.
       const std::string title = " lc " + std::to_string(colour + (d == 3 ? 3 : 0)) + " pt " +
                                 (d == 2 ? "6" : "7") + " title 'd = " + std::to_string(d) +
-                                ", r = " + rtext(r) + "'";
+                                ", r = " + rtext(r) + (k > 0 ? " (× 10^{" + std::to_string(k) + "})" : "") + "'";
       plot_n += std::string(plot_n.empty() ? "plot " : ", \\\n     ") +
-                "'fig3_active_energy.csv' skip 1 using " + sel + ":5" + title;
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":($5*" + shift + ")" + title;
       plot_e += std::string(plot_e.empty() ? "plot " : ", \\\n     ") +
-                "'fig3_active_energy.csv' skip 1 using " + sel + ":7" + title;
-    }
-    // Theory lines through the last point of the r = 0.1 curve.
-    const auto cs = cases_of(all, d, false);
-    if (!cs.empty()) {
-      const Table ts = cs.front()->sums.timeseries();
-      const double a = 1.0 / (d + 1);
-      const double tp = ts.column("t_paper").back();
-      const double n = ts.column("active").back(), e = ts.column("energy").back();
+                "'fig3_active_energy.csv' skip 1 using " + sel + ":($7*" + shift + ")" + title;
+      const auto tp = ts.column("t_paper");
+      const double bn = a * d, be = a * d + 2 * a - 2;
+      const double an = late_prefactor(tp, ts.column("active"), bn);
+      const double ae = late_prefactor(tp, ts.column("energy"), be);
+      const double lo = std::max(tp.front(), tp.back() / 100), hi = tp.back();
+      const std::string ks = std::to_string(k), ds = std::to_string(d);
       char buf[400];
-      // Drawn over the last two decades only, where the scaling regime is.
       std::snprintf(buf, sizeof buf,
-                    "N%d(x) = x < %.6g ? 1/0 : %.6g*(x/%.6g)**(%.6g)\n"
-                    "E%d(x) = x < %.6g ? 1/0 : %.6g*(x/%.6g)**(%.6g)\n",
-                    d, tp / 100, n, tp, a * d, d, tp / 100, e, tp, a * d + 2 * a - 2);
+                    "N%d(x) = x < %.6g || x > %.6g ? 1/0 : %s*%.6g*x**(%.6g)\n"
+                    "E%d(x) = x < %.6g || x > %.6g ? 1/0 : %s*%.6g*x**(%.6g)\n",
+                    k, lo, hi, shift.c_str(), an, bn, k, lo, hi, shift.c_str(), ae, be);
       theory += buf;
-      const std::string ds = std::to_string(d);
-      plot_n += ", \\\n     N" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
-                exponent_text(d, false) + "} (theory, d = " + ds + ")'";
-      plot_e += ", \\\n     E" + ds + "(x) with lines " + theory_style(d) + " title 't^{" +
-                exponent_text(d, true) + "} (theory, d = " + ds + ")'";
+      auto titled_key = [&](bool energy) {
+        return titled ? std::string(" notitle")
+                      : " title 't^{" + exponent_text(d, energy) + "} (theory, d = " + ds +
+                            "; prefactor fitted over the last decade)'";
+      };
+      plot_n += ", \\\n     N" + ks + "(x) with lines " + theory_style(d) + titled_key(false);
+      plot_e += ", \\\n     E" + ks + "(x) with lines " + theory_style(d) + titled_key(true);
+      titled = true;
+      ++k;
     }
   }
   write_csv(t, out.dir / "fig3_active_energy.csv");
-  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 650);
+  std::string gp = gnuplot_preamble("fig3_active_energy", 1400, 800);
   gp += theory;
-  gp +=
-      "set multiplot layout 1,2 title 'Fig. 3: mean active particles and kinetic energy (not "
-      "shifted)'\n"
-      "set samples 500\nset logscale xy\nset xlabel 't (paper units)'\nset format y '10^{%L}'\n"
-      "set format x '10^{%L}'\nset key font ',10'\n"
-      "set title '(a) ⟨N_t⟩'\nset ylabel '⟨N_t⟩'\n" +
-      plot_n + "\nset title '(b) ⟨E_t⟩'\nset ylabel '⟨E_t⟩'\nset key bottom left\n" + plot_e +
-      "\nunset multiplot\n";
+  gp += std::string(
+            "set multiplot layout 1,2 title 'Fig. 3: mean active particles and kinetic energy, "
+            "2D below and 3D above, each curve shifted a decade from the one below it'\n"
+            "set samples 500\nset logscale xy\nset xlabel '") +
+        kPaperTimeLabel +
+        "'\nset format y '10^{%L}'\n"
+        "set format x '10^{%L}'\nset key below maxrows 4 font ',9'\nset bmargin 8\n"
+        "set title '(a) ⟨N_t⟩ (shifted)'\nset ylabel '⟨N_t⟩ × 10^k'\n" +
+        plot_n + "\nset title '(b) ⟨E_t⟩ (shifted)'\nset ylabel '⟨E_t⟩ × 10^k'\n" +
+        plot_e + "\nunset multiplot\n";
   return out.plot("fig3_active_energy.gp", gp);
 }
 
@@ -218,45 +252,54 @@ std::string filled_xrange(const Table& t, const char* x, const char* f, double f
          "]\n";
 }
 
-// Figs. 4 and 5 in simulation units throughout (R in diameters, t in d / v_0, v in v_0), as the
-// ensemble's distributions_mean.csv holds them; the key gives each time in both units.
+// Figs. 4 and 5 in the paper's time unit (t_paper = t v_0 n^(1/d)), R in diameters and v in v_0,
+// scaled with the theory's alpha as the paper's: x = R t_paper^-alpha, f1 = t_paper^alpha P(R,t),
+// and v t_paper^(1-alpha), t_paper^(alpha-1) P(v,t), each with its standard error over the
+// realisations (distributions_mean.csv's P_R_sem, P_v_sem) drawn as error bars. Drawn at the
+// case's figure times (the paper's where the run reaches them; the key gives both units).
 std::string fig_collapse(const CaseResult& c, const Out& out, const std::string& base, int fig) {
   const Table d = read_csv(out.dir / "ensembles" / c.plan->name / "distributions_mean.csv");
   Table t;
-  for (const char* n : {"t", "t_paper", "x_R", "f1", "x_v", "f2"}) t.add_column(n, {});
+  for (const char* n : {"t", "t_paper", "x_R", "f1", "f1_sem", "x_v", "f2", "f2_sem"})
+    t.add_column(n, {});
   const auto& p = c.plan->spec.physics;
+  const double a = 1.0 / (p.dim + 1);
   for (std::size_t i = 0; i < d.rows(); ++i) {
-    const std::vector<double> row = {d.column("t")[i],   p.paper_time(d.column("t")[i]),
-                                     d.column("x_R")[i], d.column("f1")[i],
-                                     d.column("x_v")[i], d.column("f2")[i]};
+    const double tp = p.paper_time(d.column("t")[i]);
+    const double sr = std::pow(tp, a), sv = std::pow(tp, 1 - a);
+    const std::vector<double> row = {d.column("t")[i],          tp,
+                                     d.column("R")[i] / sr,     d.column("P_R")[i] * sr,
+                                     d.column("P_R_sem")[i] * sr, d.column("v")[i] * sv,
+                                     d.column("P_v")[i] / sv,   d.column("P_v_sem")[i] / sv};
     t.add_row(row);
   }
   write_csv(t, out.dir / (base + ".csv"));
   std::string pr, pv;
-  for (double ts : c.plan->spec.snapshot_times) {
-    const std::string sel = "($1==" + format_number(ts) + " ? ";
-    const std::string title = "'t = " + figure_number(ts, 6) +
-                              " (t_{paper} = " + format_number(std::round(p.paper_time(ts))) + ")'";
+  for (double ts : c.plan->figure_times) {
+    const std::string sel = "($1==" + format_double(ts) + " ? ";
+    const std::string title = "'t_{paper} = " + format_number(std::round(p.paper_time(ts))) +
+                              " (t = " + figure_number(ts, 6) + " d/v_0)'";
     pr += std::string(pr.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
-          sel + "$3 : 1/0):4 title " + title;
+          sel + "$3 : 1/0):4:5 with yerrorlines title " + title;
     pv += std::string(pv.empty() ? "plot " : ", \\\n     ") + "'" + base + ".csv' skip 1 using " +
-          sel + "$5 : 1/0):($6 > 0 ? $6 : 1/0) title " + title;
+          sel + "$6 : 1/0):($7 > 0 ? $7 : 1/0):8 with yerrorlines title " + title;
   }
   const std::string as = p.dim == 2 ? "1/3" : "1/4";
   const std::string bs = p.dim == 2 ? "2/3" : "3/4";  // 1 - alpha
   std::string gp = gnuplot_preamble(base, 1400, 600);
   gp += "set multiplot layout 1,2 title 'Fig. " + std::to_string(fig) + ": scaling collapse in " +
         std::to_string(p.dim) + "D, r = " + rtext(p.restitution) + ", α = " + as +
-        "; simulation units: R in diameters, t in d/v_0, v in v_0'\n";
+        (c.plan->paper_times ? " at the times of the paper" : " at the times of the paper scaled to the run") +
+        "; t in paper units 1/(v_0 n^{1/d}), R in diameters, v in v_0; bars: ± standard error'\n";
   // (a): room above the peak for the key (linear y).
   gp += "set title '(a) t^{α} P(R,t) against R t^{-α}'\nset xlabel 'R t^{-" + as +
-        "} (simulation units)'\nset ylabel 't^{" + as +
+        "} (t in paper units)'\nset ylabel 't^{" + as +
         "} P(R,t)'\nset key top left\nset offsets 0, 0, graph 0.3, 0\n" +
         filled_xrange(t, "x_R", "f1", 1e-2) + pr + "\n";
   // Log y: the exponential tail down to 1e-4 of the peak, below which a bin holds a few
   // particles of one realisation; the key bottom left, below the rise (the peak is at the top).
   gp += "set title '(b) t^{α-1} P(v,t) against v t^{1-α}'\nset xlabel 'v t^{" + bs +
-        "} (simulation units)'\nset ylabel 't^{-" + bs +
+        "} (t in paper units)'\nset ylabel 't^{-" + bs +
         "} P(v,t)'\nset offsets 0, 0, 0, 0\nset logscale y\nset format y '10^{%L}'\n"
         "set key bottom left\n" +
         filled_xrange(t, "x_v", "f2", 1e-4) + pv + "\n";
@@ -308,13 +351,13 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       break;
     }
   std::string gp = gnuplot_preamble(base, 1900, 900);
-  gp +=
-      "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) + "]\n";
+  gp += "set xrange [" + format_double(p.paper_time(t_start)) + ":" +
+        format_double(p.paper_time(ts.column("t").back())) + "]\n";
   gp +=
       "set multiplot layout 2,4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
       " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
-      "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
+      "set logscale x\nset format x '10^{%L}'\nset xlabel '" + kPaperTimeLabel + "'\n"
       "set key top right font ',9' samplen 2\nset style fill transparent solid 0.3 "
       "noborder\n";
   for (std::size_t q = 0; q < f.exponents.size(); ++q) {
@@ -322,26 +365,12 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
     const int col = 3 + 3 * int(q);  // slope column
     const std::string name = enhanced(e.quantity);
     gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
-    // The y-range from the band over the last 1.5 decades (and the theory): the early slopes of
-    // the first collisions span far more and would flatten the part the exponent is read from.
-    double ylo = std::isfinite(e.theory) ? e.theory : std::numeric_limits<double>::infinity();
-    double yhi = std::isfinite(e.theory) ? e.theory : -std::numeric_limits<double>::infinity();
-    const double t_late = e.slope.t.back() / std::pow(10.0, 1.5);
-    for (std::size_t i = 0; i < e.slope.t.size(); ++i)
-      if (e.slope.t[i] >= t_late && std::isfinite(e.slope.lo[i]) && std::isfinite(e.slope.hi[i])) {
-        ylo = std::min(ylo, e.slope.lo[i]);
-        yhi = std::max(yhi, e.slope.hi[i]);
-      }
-    if (ylo < yhi) {
-      const double pad = std::max(0.3 * (yhi - ylo), 0.03);
-      gp +=
-          "set yrange [" + format_double(ylo - pad) + ":" + format_double(yhi + 1.5 * pad) + "]\n";
-    } else {
-      gp += "set yrange [*:*]\n";
-    }
-    std::string plot = "plot '" + base + ".csv' skip 1 using 1:" + std::to_string(col + 1) + ":" +
+    const auto [ylo, yhi] = slope_yrange(e);
+    gp += std::isfinite(ylo) ? "set yrange [" + format_double(ylo) + ":" + format_double(yhi) + "]\n"
+                             : std::string("set yrange [*:*]\n");
+    std::string plot = "plot '" + base + ".csv' skip 1 using 2:" + std::to_string(col + 1) + ":" +
                        std::to_string(col + 2) +
-                       " with filledcurves lc rgb '#6090d0' title '95% band', '' skip 1 using 1:" +
+                       " with filledcurves lc rgb '#6090d0' title '95% band', '' skip 1 using 2:" +
                        std::to_string(col) +
                        " with lines lw 2 lc rgb '#2050a0' title 'local slope'";
     if (std::isfinite(e.theory)) {
@@ -353,8 +382,9 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
     // The plateau fit is drawn only where a theory is compared (not on C_t of r < 1).
     if (std::isfinite(e.fit.exponent) && std::isfinite(e.theory)) {
       char buf[300];
-      std::snprintf(buf, sizeof buf, ", (x >= %.6g && x <= %.6g) ? %.6g : 1/0", e.fit.window.t_lo,
-                    e.fit.window.t_hi, e.fit.exponent);
+      std::snprintf(buf, sizeof buf, ", (x >= %.6g && x <= %.6g) ? %.6g : 1/0",
+                    p.paper_time(e.fit.window.t_lo), p.paper_time(e.fit.window.t_hi),
+                    e.fit.exponent);
       plot += std::string(buf) + " with lines lw 5 lc rgb '#d06000' title 'fit " +
               figure_number(e.fit.exponent, 3) + " [" + figure_number(e.fit.ci_lo, 3) + ", " +
               figure_number(e.fit.ci_hi, 3) + "]'";
@@ -367,44 +397,53 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
   return out.plot(base + ".gp", gp);
 }
 
-// Crossover times against their control parameter with the fitted line, its exponent and
-// interval in the key; one set of points per CrossoverSet (a rule in one dimension), the sets
-// after the first of each dimension drawn open.
+// Crossover times (in paper units) against their control parameter with the fitted line, its
+// exponent and interval in the key; one set of points per CrossoverSet (a rule in one
+// dimension), the sets after the first of each dimension drawn open. A set without a crossover
+// found has no key entry. `fit_note` follows each fit's title (what the fit is to the verdict).
 struct CrossoverPlot {
   std::string base, title, xlabel, ylabel, name;  // name: φ_1 or φ_2
+  std::string fit_note;
 };
 
-std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
-                                 const std::vector<CrossoverSet>& sets) {
-  Table t;
-  for (const char* n : {"set", "d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+// The panel's plot command (without "plot") and its functions; the rows go into t.
+struct CrossoverPanel {
   std::string plot, functions;
+};
+CrossoverPanel crossover_panel(const CrossoverPlot& cp, const std::vector<CrossoverSet>& sets,
+                               Table& t) {
+  CrossoverPanel out;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const CrossoverSet& set = sets[k];
     const int d = set.d;
+    const std::size_t rows = t.rows();
     for (const auto& p : set.points) {
       if (!p.crossover.found) continue;
       std::vector<double> ok;
       for (double x : p.draws)
-        if (std::isfinite(x)) ok.push_back(x);
+        if (std::isfinite(x)) ok.push_back(x * set.to_paper);
       std::sort(ok.begin(), ok.end());
       const double nan = std::numeric_limits<double>::quiet_NaN();
       const double lo = ok.size() >= 10 ? sorted_quantile(ok, 0.025) : nan;
       const double hi = ok.size() >= 10 ? sorted_quantile(ok, 0.975) : nan;
-      const std::vector<double> row = {double(k), double(d), p.control, p.crossover.time, lo, hi};
+      const std::vector<double> row = {double(k), double(d), p.control,
+                                       p.crossover.time * set.to_paper, lo, hi};
       t.add_row(row);
     }
+    if (t.rows() == rows) continue;  // nothing found: no empty key entry
     const std::string ks = std::to_string(k), ds = std::to_string(d);
     const std::string title = "d = " + ds + (set.rule.empty() ? "" : ", " + set.rule);
     const std::string symbol = set.symbol != 0 ? std::to_string(set.symbol) : set.open ? "6" : "7";
-    plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
-            ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " + symbol +
-            " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") + "' title '" + title + "'";
+    out.plot += std::string(out.plot.empty() ? "" : ", \\\n     ") + "'" + cp.base +
+                ".csv' skip 1 using ($1==" + ks + " ? $3 : 1/0):4:5:6 with yerrorbars pt " +
+                symbol + " ps 1.5 lc rgb '" + (d == 2 ? "black" : "#a00000") + "' title '" +
+                title + "'";
     const auto& f = set.fit;
     if (std::isfinite(f.fit.phi)) {
       char buf[200];
-      std::snprintf(buf, sizeof buf, "T%zu(x) = %.6g*x**(-%.6g)\n", k, f.fit.prefactor, f.fit.phi);
-      functions += buf;
+      std::snprintf(buf, sizeof buf, "T%zu(x) = %.6g*x**(-%.6g)\n", k,
+                    f.fit.prefactor * set.to_paper, f.fit.phi);
+      out.functions += buf;
       const std::string interval =
           std::isfinite(f.ci_lo)
               ? " [" + figure_number(f.ci_lo, 3) + ", " + figure_number(f.ci_hi, 3) + "]"
@@ -412,18 +451,155 @@ std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
       const std::string line =
           set.open ? std::string("lw 1 dt 3 lc rgb '") + (d == 2 ? "black" : "#a00000") + "'"
                    : theory_style(d);
-      plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title +
-              " fit: " + cp.name + " = " + figure_number(f.fit.phi, 3) + interval + "'";
+      out.plot += ", \\\n     T" + ks + "(x) with lines " + line + " title '" + title + " fit" +
+                  cp.fit_note + ": " + cp.name + " = " + figure_number(f.fit.phi, 3) + interval +
+                  "'";
     }
   }
+  return out;
+}
+
+std::string fig_crossover_points(const Out& out, const CrossoverPlot& cp,
+                                 const std::vector<CrossoverSet>& sets) {
+  Table t;
+  for (const char* n : {"set", "d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+  const CrossoverPanel panel = crossover_panel(cp, sets, t);
   write_csv(t, out.dir / (cp.base + ".csv"));
   std::string gp = gnuplot_preamble(cp.base, 900, 650);
   if (t.rows() == 0)
     return out.plot(cp.base + ".gp",
                     gp + no_data_plot(cp.base + ".csv", "no crossover reached in these runs"));
-  gp += functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" + cp.xlabel +
-        "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " + plot + "\n";
+  gp += panel.functions + "set title '" + cp.title + "'\nset logscale xy\nset xlabel '" +
+        cp.xlabel + "'\nset ylabel '" + cp.ylabel + "'\nset key below font ',10'\n" + "plot " +
+        panel.plot + "\n";
   return out.plot(cp.base + ".gp", gp);
+}
+
+// Fig. 6 (b): phi1 between neighbouring r against 1 - r^2 (the pair's geometric mean): the
+// E_t/E_0 collapse, whose pair nearest r = 1 is the declared reading the verdict uses
+// (phi1_energy_comparison), filled and ringed; the intersection rule's t_c1 ratios open; the
+// paper's value as a line. Rows into t: d, kind (0 collapse, 1 intersection rule, 2 the
+// declared reading), control, phi, its 95% interval.
+std::string phi1_pairs_panel(const std::vector<CrossoverSet>& tc1, const std::string& csv,
+                             Table& t) {
+  std::string plot, lines;
+  for (const CrossoverSet& set : tc1) {
+    auto control = [&](const std::string& label) {
+      for (const auto& p : set.points)
+        if (p.label == label) return p.control;
+      return std::numeric_limits<double>::quiet_NaN();
+    };
+    auto pair_x = [&](const std::string& a, const std::string& b) {
+      return std::sqrt(control(a) * control(b));
+    };
+    const std::string ds = std::to_string(set.d);
+    const std::string colour = set.d == 2 ? "black" : "#a00000";
+    // One clause per kind that has points: a key entry without one says nothing.
+    auto clause = [&](int kind, const std::string& style, const std::string& title) {
+      plot += std::string(plot.empty() ? "" : ", \\\n     ") + "'" + csv + "' skip 1 using ($1==" +
+              ds + " && $2==" + std::to_string(kind) + " ? $3 : 1/0):" + style + " lc rgb '" +
+              colour + "' title '" + title + "'";
+    };
+    std::size_t rows = t.rows();
+    for (const Phi1Reading& e : set.energy)
+      if (std::isnan(e.level) && std::isfinite(e.phi)) {
+        const std::vector<double> row = {double(set.d), 0, pair_x(e.from, e.to), e.phi, e.ci_lo,
+                                         e.ci_hi};
+        t.add_row(row);
+      }
+    if (t.rows() > rows)
+      clause(0, "4:5:6 with yerrorbars pt 7 ps 1.2", "d = " + ds + ": E_t/E_0 collapse");
+    rows = t.rows();
+    for (const LocalCrossoverExponent& e : set.local)
+      if (std::isfinite(e.phi)) {
+        const std::vector<double> row = {double(set.d), 1, pair_x(e.from, e.to), e.phi, e.ci_lo,
+                                         e.ci_hi};
+        t.add_row(row);
+      }
+    if (t.rows() > rows)
+      clause(1, "4:5:6 with yerrorbars pt 6 ps 1.2",
+             "d = " + ds + ": t_{c1} ratio (intersection rule)");
+    const Comparison declared =
+        phi1_energy_comparison(set.d, set.energy, std::numeric_limits<double>::quiet_NaN());
+    if (const Phi1Reading* last =
+            nearest_limit_reading(set.energy, std::numeric_limits<double>::quiet_NaN())) {
+      const std::vector<double> row = {double(set.d), 2, pair_x(last->from, last->to), last->phi,
+                                       last->ci_lo, last->ci_hi};
+      t.add_row(row);
+      clause(2, "4 with points pt 65 ps 3 lw 2",
+             "d = " + ds + ", declared (the verdict): φ_1 = " + figure_number(last->phi, 3) +
+                 " [" + figure_number(last->ci_lo, 3) + ", " + figure_number(last->ci_hi, 3) +
+                 "], " + last->from + " and " + last->to);
+    }
+    lines += ", \\\n     " + format_double(declared.theory) + " with lines " +
+             theory_style(set.d) + " title 'paper, d = " + ds + ": φ_1 = " +
+             figure_number(declared.theory, 3) + "'";
+  }
+  return plot.empty() ? std::string() : plot + lines;
+}
+
+// Fig. 6: (a) t_c1 against 1 - r^2 with the fits over all r (a sensitivity reading), (b) phi1
+// between neighbouring r, with the declared reading the report's verdict uses.
+std::string fig6(const Out& out, const Crossovers& x) {
+  const std::string base = "fig6_crossover", pairs = "fig6_crossover_pairs.csv";
+  std::vector<CrossoverSet> sets = x.tc1;
+  sets.insert(sets.end(), x.tc1_theory_b.begin(), x.tc1_theory_b.end());
+  const CrossoverPlot cp{base, "", "", "", "φ_1", " over all r (sensitivity)"};
+  Table t, p;
+  for (const char* n : {"set", "d", "control", "t_c", "t_c_lo", "t_c_hi"}) t.add_column(n, {});
+  for (const char* n : {"d", "kind", "control", "phi1", "phi1_lo", "phi1_hi"}) p.add_column(n, {});
+  const CrossoverPanel a = crossover_panel(cp, sets, t);
+  const std::string b = phi1_pairs_panel(x.tc1, pairs, p);
+  write_csv(t, out.dir / (base + ".csv"));
+  write_csv(p, out.dir / pairs);
+  std::string gp = gnuplot_preamble(base, 1500, 700);
+  gp += a.functions +
+        "set multiplot layout 1,2 title 'Fig. 6: the crossover t_{c1} ∝ (1 - r^2)^{-φ_1} "
+        "(paper: φ_1 = 2.25 in 2D, 3.0 in 3D)'\n"
+        "set logscale x\nset xlabel '1 - r^2'\nset key below font ',9'\n";
+  gp += "set title '(a) t_{c1} by the intersection rule'\nset logscale y\nset ylabel 't_{c1} (" +
+        std::string(kPaperTimeLabel).substr(3) + "'\n" +
+        (a.plot.empty() ? "set label 1 'no t_{c1} found in these runs' at graph 0.5, 0.5 center\n"
+                          "plot [0.1:1][1:10] -1 notitle\nunset label 1\n"
+                        : "plot " + a.plot + "\n");
+  gp += "set title '(b) φ_1 between neighbouring r'\nunset logscale y\nset ylabel 'φ_1'\n" +
+        (b.empty() ? std::string("set label 1 'no pair of r gives φ_1' at graph 0.5, 0.5 center\n"
+                                 "plot [0.1:1][0:5] -1 notitle\n")
+                   : "plot " + b + "\n");
+  gp += "unset multiplot\n";
+  return out.plot(base + ".gp", gp);
+}
+
+// fig12: the paper's "faster particles are in the inside edge" as numbers against r: the mean
+// speed of the active particles inside their median distance from the centre of mass over that
+// of those outside it, at the last snapshot, +- its standard error over realisations (the
+// report's table "The inner edge's speed"); > 1 is faster inside.
+std::string fig_inner_edge(const std::vector<CaseResult>& all, const Out& out) {
+  const std::string base = "fig12_inner_edge";
+  Table t;
+  for (const char* n : {"d", "r", "ratio", "ratio_sem"}) t.add_column(n, {});
+  for (int d : {2, 3})
+    for (bool elastic : {false, true})
+      for (const CaseResult* c : cases_of(all, d, elastic)) {
+        if (c->sums.count() == 0) continue;
+        const std::vector<double> row = {double(d), c->plan->spec.physics.restitution,
+                                         c->fits.last_scalar("inner_outer_ratio"),
+                                         c->fits.last_scalar_sem("inner_outer_ratio")};
+        if (std::isfinite(row[2])) t.add_row(row);
+      }
+  write_csv(t, out.dir / (base + ".csv"));
+  std::string gp = gnuplot_preamble(base, 900, 600);
+  if (t.rows() == 0)
+    return out.plot(base + ".gp", gp + no_data_plot(base + ".csv", "no band at the last snapshot"));
+  gp += "set title 'Fig. 12: inner over outer mean speed of the band, last snapshot (paper: faster inside)'\n"
+        "set xlabel 'coefficient of restitution r'\nset ylabel '⟨|v|⟩ inside / ⟨|v|⟩ outside "
+        "the median R'\nset xrange [0:1.05]\nset key top right\nset offsets 0, 0, graph 0.1, "
+        "graph 0.05\n"
+        "plot 1 with lines lw 1 dt 2 lc rgb 'gray40' title 'equal speeds', '" +
+        base + ".csv' skip 1 using ($1==2 ? $2 : 1/0):3:4 with yerrorlines pt 7 lc rgb 'black' "
+        "title 'd = 2 (± standard error)', '' skip 1 using ($1==3 ? $2 : 1/0):3:4 with "
+        "yerrorlines pt 5 lc rgb '#a00000' title 'd = 3 (± standard error)'\n";
+  return out.plot(base + ".gp", gp);
 }
 
 // fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
@@ -445,7 +621,7 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
     const Table ts = c->sums.timeseries();
     for (std::size_t i = 0; i < ts.rows(); ++i)
       if (ts.column("active")[i] >= 20) {
-        t_start = std::min(t_start, ts.column("t")[i]);
+        t_start = std::min(t_start, c->plan->spec.physics.paper_time(ts.column("t")[i]));
         break;
       }
   }
@@ -453,8 +629,8 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
   if (std::isfinite(t_start)) gp += "set xrange [" + format_double(t_start) + ":*]\n";
   gp += "set multiplot layout 2,2 title 'Local slopes in 3D against the momentum-conserving "
         "(alpha = 1/4, dashed) and pressure-driven (alpha = 2/7, dotted) snowplows'\n"
-        "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"
-        "set key bottom right font ',8' samplen 2\n";
+        "set logscale x\nset format x '10^{%L}'\nset xlabel '" + std::string(kPaperTimeLabel) + "'\n"
+        "set key top right font ',8' samplen 2\n";
   for (std::size_t q = 0; q < std::size(panels); ++q) {
     const std::string name = quantity_name(panels[q]);
     gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
@@ -465,7 +641,9 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
       const std::string csv = base + "_" + c->plan->name + ".csv";
       if (q == 0) {
         Table t;
-        t.add_column("t", e->slope.t);
+        std::vector<double> tp;
+        for (double x : e->slope.t) tp.push_back(c->plan->spec.physics.paper_time(x));
+        t.add_column("t_paper", tp);
         for (Quantity p : panels) t.add_column(quantity_name(p), find_exponent(c->fits, p)->slope.slope);
         write_csv(t, out.dir / csv);
       }
@@ -529,6 +707,32 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
 
 }  // namespace
 
+std::pair<double, double> slope_yrange(const ExponentFit& e) {
+  const SlopeBand& s = e.slope;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (s.t.empty()) return {nan, nan};
+  double t_lo = s.t.back() / 10;
+  if (std::isfinite(e.fit.exponent)) t_lo = std::min(t_lo, e.fit.window.t_lo);
+  std::vector<double> slope, half;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (s.t[i] < t_lo || !std::isfinite(s.slope[i])) continue;
+    slope.push_back(s.slope[i]);
+    if (std::isfinite(s.lo[i]) && std::isfinite(s.hi[i])) half.push_back(0.5 * (s.hi[i] - s.lo[i]));
+  }
+  if (slope.empty()) return {nan, nan};
+  std::sort(slope.begin(), slope.end());
+  double lo = sorted_quantile(slope, 0.05), hi = sorted_quantile(slope, 0.95);
+  for (double x : {e.theory, e.fit.exponent})
+    if (std::isfinite(x)) {
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  std::sort(half.begin(), half.end());
+  const double band = half.empty() ? 0 : sorted_quantile(half, 0.5);
+  const double pad = std::max({0.3 * (hi - lo), 0.03, band});
+  return {lo - pad, hi + 1.5 * pad};  // room above for the key
+}
+
 Fig1Snapshots run_fig1(const FiguresPlan::Fig1& f) {
   Fig1Snapshots out;
   auto sim = make_simulation(f.a);
@@ -576,6 +780,7 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
     std::vector<EnergyCurves> curves;
     for (const CaseResult* c : phi1_cases(results, d)) {
       const double r = c->plan->spec.physics.restitution;
+      energy.to_paper = theory_b.to_paper = c->plan->spec.physics.paper_time(1.0);
       EnergyCurves ec;
       ec.control = 1 - r * r;
       ec.label = "r = " + rtext(r);
@@ -601,6 +806,7 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
       const double f = po.levels[k];
       CrossoverSet at =
           crossover_set(d, "time to E_0 x " + figure_number(f, 3), true, symbols[k % 3]);
+      at.to_paper = energy.to_paper;
       for (const EnergyCurves& ec : curves) {
         FractionTime ft = time_to_fraction(ec, f, po);
         at.points.push_back(
@@ -613,6 +819,7 @@ Crossovers crossovers_of(const std::vector<CaseResult>& results) {
   for (const auto& c : results) {
     if (!c.plan->delta_scan) continue;
     const double delta = c.plan->spec.physics.cutoff;
+    scan.to_paper = c.plan->spec.physics.paper_time(1.0);
     scan.points.push_back({delta, "delta = " + figure_number(delta), c.fits.tc2, c.fits.tc2_draws});
   }
   scan.fit = fit_crossover_points(scan.points);
@@ -640,26 +847,20 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
     if (!c.plan->delta_scan) check(fig_local_slopes(c, out));
   }
   check(fig_packing(results, out));
+  check(fig_inner_edge(results, out));
   check(fig_snowplow(results, out));
-  std::vector<CrossoverSet> tc1 = crossovers.tc1;
-  tc1.insert(tc1.end(), crossovers.tc1_theory_b.begin(), crossovers.tc1_theory_b.end());
-  check(fig_crossover_points(
-      out,
-      {"fig6_crossover",
-       "Crossover time t_{c1} against 1 - r^2 (paper: φ_1 = 2.25 in 2D, 3.0 in 3D)", "1 - r^2",
-       "t_{c1} (simulation units)", "φ_1"},
-      tc1));
+  check(fig6(out, crossovers));
   check(fig_crossover_points(out,
                              {"fig10_energy_fraction_times",
                               "Time for <E_t> to reach E_0/2, E_0/10, E_0/100 against 1 - r^2 "
                               "(level readings of φ_1)",
-                              "1 - r^2", "t (simulation units)", "φ_1"},
+                              "1 - r^2", kPaperTimeLabel, "φ_1", ""},
                              crossovers.fractions));
   check(fig_crossover_points(
       out,
       {"fig7_tc2_delta",
        "Crossover time t_{c2} against the cutoff δ (2D, r = 0.1; paper: φ_2 = 3/2)", "δ",
-       "t_{c2} (simulation units)", "φ_2"},
+       std::string("t_{c2} (") + (kPaperTimeLabel + 3), "φ_2", ""},
       crossovers.tc2));
   return problems;
 }

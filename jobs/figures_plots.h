@@ -4,6 +4,7 @@
 // crossover points of the phi1 and phi2 fits, which figs. 6 and 7 and the report share.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/energy_scaling.h"
@@ -30,6 +31,7 @@ struct CrossoverSet {
   CrossoverExponentFit fit;
   bool open = false;  // drawn with open symbols: a reading beside the reported one
   int symbol = 0;     // gnuplot point type; 0: a circle (filled, or open as above)
+  double to_paper = 1;  // paper time units per simulation time unit: the figures' times are in them
   std::vector<LocalCrossoverExponent> local;  // between neighbouring points (tc1 only)
   // phi1 from the energy curves between neighbouring r, no plateau needed (tc1 only,
   // analysis/energy_scaling.h): per pair the collapse, then each fixed fraction of E_0.
@@ -64,6 +66,13 @@ std::vector<std::string> write_figures(const FiguresPlan& plan,
                                        const Crossovers& crossovers,
                                        const std::filesystem::path& dir,
                                        const std::vector<std::string>& formats);
+
+// The y-range of a local-slope panel of Fig. 8: the 5-95% quantiles of the local slope where the
+// exponent is read (the last decade, and the plateau fit's window), widened to the theory and the
+// fit and padded by the band's median half width. Min and max let the first collisions' noise
+// (R_front quantised in shells: local slopes of +-3 at t ~ 100) squash the part that matters.
+// NaNs when the slope has no finite value there.
+std::pair<double, double> slope_yrange(const ExponentFit& e);
 
 // x to `digits` significant digits, "n/a" when not finite: numbers in figure keys and reports.
 std::string figure_number(double x, int digits = 4);

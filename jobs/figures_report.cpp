@@ -147,6 +147,23 @@ std::string phi1_limit_markdown(const Crossovers& crossovers) {
   return md.str();
 }
 
+// The files line of Figs. 4 and 5: at which times each collapse is drawn.
+std::string collapse_files_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "- fig4_collapse_2d, fig5_collapse_3d: P(R,t) and P(v,t) of r = 0.1 scaled with the "
+        "theory's alpha, +- standard errors over realisations (Figs. 4, 5)";
+  for (const auto& c : results) {
+    if (!c.plan->collapse) continue;
+    const auto& p = c.plan->spec.physics;
+    md << "; " << p.dim << "D at t_paper =";
+    for (double t : c.plan->figure_times) md << " " << figure_number(p.paper_time(t), 5);
+    md << (c.plan->paper_times ? " (the paper's times)"
+                               : " (the paper's times in ratio, ending at this run's t_max)");
+  }
+  md << ".\n";
+  return md.str();
+}
+
 // Every exponent of every case with its plateau and the local slope's drift across it.
 // The paper's "faster particles on the inside edge" as numbers, per case at the last snapshot:
 // the mean speed inside the band's median radius over that outside it, and the correlation of
@@ -172,6 +189,7 @@ std::string inner_edge_markdown(const std::vector<CaseResult>& results) {
        << figure_number(f.last_scalar("inner_correlation"), 3) << " +- "
        << figure_number(f.last_scalar_sem("inner_correlation"), 2) << " |\n";
   }
+  md << "\nAgainst r: fig12_inner_edge.png.\n";
   return md.str();
 }
 
@@ -383,12 +401,24 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";
   md << "\n## Files\n\n"
+        "Every time axis of the figures is in the paper's unit, the initial mean collision time "
+        "1 / (v_0 n^{1/d}): t_paper = t v_0 n^{1/d} (0.5 t in 2D, 0.63 t in 3D at n = 0.25); "
+        "lengths in diameters, speeds in v_0. The tables above keep simulation units unless a "
+        "column says paper.\n\n"
      << fig1_markdown(run.fig1)
      << "- fig2_anisotropy: A(t) in 2D (Fig. 2).\n"
-        "- fig3_active_energy: <N_t>, <E_t> in 2D and 3D with the theory's slopes (Fig. 3).\n"
-        "- fig4_collapse_2d, fig5_collapse_3d: scaled P(R,t), P(v,t) for r = 0.1 (Figs. 4, 5).\n"
-        "- fig6_crossover: t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits, by "
-        "the intersection rule (filled) and with b fixed at the theory's (open).\n"
+        "- fig3_active_energy: <N_t>, <E_t> of r = 0.1, 0.5, 0.8, 2D below and 3D above, each "
+        "curve shifted a decade from the one below it as in the paper's Fig. 3 (the key gives "
+        "the factor), with the theory's slope along each curve, its prefactor fitted over the "
+        "curve's last decade.\n"
+     << collapse_files_markdown(results)
+     << "- fig6_crossover: (a) t_c1 against 1 - r^2 with bootstrap intervals and the phi1 fits "
+        "over all r (a sensitivity reading), by the intersection rule (filled) and with b fixed "
+        "at the theory's (open); (b) phi1 between neighbouring r, the E_t/E_0 collapse (filled) "
+        "and the intersection rule (open), the declared reading the verdict uses marked "
+        "(fig6_crossover_pairs.csv).\n"
+        "- fig12_inner_edge: the inner edge's speed ratio against r, 2D and 3D, +- its standard "
+        "error (the table The inner edge's speed).\n"
         "- fig7_tc2_delta: t_c2 against the cutoff delta (2D, r = 0.1) and the phi2 fit.\n"
         "- fig10_energy_fraction_times: the time <E_t> falls to E_0/2, E_0/10 and E_0/100 "
         "against 1 - r^2 with bootstrap intervals, in 2D and 3D: the times whose ratios between "

@@ -137,7 +137,9 @@ void colour_scale(Scene& sc, const std::vector<const Snapshot*>& snaps, std::vec
     if (is_scaled(style.field) && sc.v_rms > 0) sc.bar_note = "v_rms = " + fmt("%.3g", sc.v_rms);
     if (style.inset) sc.inset.emplace();  // its profile is taken in the sprite pass
   }
-  sc.bar_label = style.field == Field::Column ? style.column : field_label(style.field);
+  sc.bar_label = !style.bar_label.empty()       ? style.bar_label
+                 : style.field == Field::Column ? style.column
+                                                : field_label(style.field);
   if (style.field == Field::None) sc.style.colorbar = false;  // one colour says nothing
   if (style.scale == Scale::Log) sc.bar_label += " (log)";
   sc.time_text = time_text(snaps.front()->info);

@@ -47,6 +47,7 @@ struct Style {
   bool show_inactive = false;  // inactive particles in a faint neutral colour
   Background background = Background::Light;
   bool colorbar = true;
+  std::string bar_label;  // the colour bar's title with its unit; empty: field_label's
   bool time_label = true;
   bool scale_bar = false;     // a length in particle diameters (3D: at the centre's distance)
   bool legend = true;         // multi-snapshot overlay: one colour per time

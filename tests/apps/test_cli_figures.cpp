@@ -5,7 +5,9 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +49,69 @@ bool names_only_existing_files(const std::string& text, const fs::path& dir) {
   return ok;
 }
 
+// What the figures show, read from their scripts and CSVs (no pixels): one time unit, the
+// paper's, on every axis; Fig. 3's curves shifted apart with a theory line each; Fig. 6 without
+// key entries for sets that have no point, showing the phi1 reading the verdict uses; Fig. 8's
+// y-ranges on the scale of an exponent, not of the first collisions' noise.
+void expect_figure_scripts_as_drawn(const fs::path& dir) {
+  for (const auto& f : fs::directory_iterator(dir)) {
+    if (f.path().extension() != ".gp") continue;
+    const std::string gp = read_file(f.path());
+    EXPECT_EQ(gp.find("simulation units"), std::string::npos) << f.path().filename();
+    if (gp.find("set xlabel 't") != std::string::npos) {
+      EXPECT_NE(gp.find("paper units"), std::string::npos) << f.path().filename();
+    }
+    if (f.path().filename().string().starts_with("fig8_local_slopes_")) {
+      const std::regex yrange(R"(set yrange \[([-0-9.e]+):([-0-9.e]+)\])");
+      int ranges = 0;
+      for (auto it = std::sregex_iterator(gp.begin(), gp.end(), yrange);
+           it != std::sregex_iterator(); ++it, ++ranges)
+        EXPECT_LT(std::stod((*it)[2]) - std::stod((*it)[1]), 4) << f.path().filename() << " "
+                                                                 << it->str();
+      EXPECT_GT(ranges, 0) << f.path().filename();
+    }
+  }
+  {  // Fig. 3: six curves (r = 0.1, 0.5, 0.8 in 2D and 3D), each a decade apart, each with its
+     // theory line, where one line per dimension hung on the r = 0.1 curve's last point.
+    const std::string gp = read_file(dir / "fig3_active_energy.gp");
+    std::set<std::string> shifts;
+    const std::regex shift(R"(:\(\$5\*(1e\d)\))");
+    for (auto it = std::sregex_iterator(gp.begin(), gp.end(), shift); it != std::sregex_iterator();
+         ++it)
+      shifts.insert((*it)[1]);
+    EXPECT_EQ(shifts.size(), 6u);
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NE(gp.find(std::string("N") + std::to_string(k) + "(x) with lines"), std::string::npos)
+          << k;
+  }
+  {  // Fig. 6: every set of points drawn has a row in the CSV, and panel (b) names the value of
+     // the counted phi1 row of summary.json in each dimension.
+    const std::string gp = read_file(dir / "fig6_crossover.gp");
+    const Table t = read_csv(dir / "fig6_crossover.csv");
+    const std::regex set(R"(\(\$1==(\d+) \? \$3 : 1/0\))");
+    for (auto it = std::sregex_iterator(gp.begin(), gp.end(), set); it != std::sregex_iterator();
+         ++it) {
+      const double k = std::stod((*it)[1]);
+      EXPECT_NE(std::count(t.column("set").begin(), t.column("set").end(), k), 0)
+          << "a key entry for set " << k << ", which has no point";
+    }
+    const Json j = Json::parse(read_file(dir / "summary.json"));
+    int declared = 0;
+    for (const Json& c : j.at("comparisons"))
+      if (c.at("quantity") == "phi1 (E_t/E_0 collapse, the two largest r)" &&
+          c.at("measured").is_number()) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%.3g", c.at("measured").get<double>());
+        EXPECT_NE(gp.find(std::string("d = ") + std::to_string(c.at("d").get<int>()) +
+                          ", declared (the verdict): φ_1 = " + value),
+                  std::string::npos)
+            << c.dump();
+        ++declared;
+      }
+    EXPECT_GT(declared, 0);
+  }
+}
+
 TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   // A folder whose name has a quote and a space: gnuplot runs without a shell.
   const auto dir = scratch_dir("it's tiny");
@@ -58,7 +123,8 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   for (const char* base :
        {"fig2_anisotropy", "fig3_active_energy", "fig4_collapse_2d", "fig5_collapse_3d",
         "fig6_crossover", "fig7_tc2_delta", "fig8_local_slopes_d2_r0.1",
-        "fig8_local_slopes_d3_r1_large", "fig9_packing", "fig10_energy_fraction_times"}) {
+        "fig8_local_slopes_d3_r1_large", "fig9_packing", "fig10_energy_fraction_times",
+        "fig12_inner_edge"}) {
     const std::string b(base);
     EXPECT_TRUE(is_png(dir / (b + ".png"))) << b;
     EXPECT_NE(read_file(dir / (b + ".svg")).find("<svg"), std::string::npos) << b;
@@ -128,29 +194,40 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     }
     EXPECT_EQ(c.at("superseded_for_alpha").get<bool>(), c.at("name") == "d3_r1") << c.dump();
   }
-  // Figs. 4 and 5 in one unit system, said on the axes: the CSV's t_paper is t v_0 n^(1/d)
-  // (n = 0.25), the x labels say simulation units, and the x-range is set from the data.
+  // Figs. 4 and 5 in the paper's time unit, said on the axes: the CSV's t_paper is t v_0 n^(1/d)
+  // (n = 0.25) and its scaled columns use it, the x-range is set from the data, and the error
+  // bars are the CSV's standard errors (columns 5 and 8).
   for (const auto& [base, d] :
        {std::pair{"fig4_collapse_2d", 2}, std::pair{"fig5_collapse_3d", 3}}) {
     const Table t = read_csv(dir / (std::string(base) + ".csv"));
     ASSERT_GT(t.rows(), 0u) << base;
-    for (std::size_t i = 0; i < t.rows(); ++i)
-      EXPECT_NEAR(t.column("t_paper")[i], t.column("t")[i] * std::pow(0.25, 1.0 / d),
-                  1e-9 * t.column("t")[i])
-          << base;
+    const double a = 1.0 / (d + 1);
+    for (std::size_t i = 0; i < t.rows(); ++i) {
+      const double tp = t.column("t")[i] * std::pow(0.25, 1.0 / d);
+      EXPECT_NEAR(t.column("t_paper")[i], tp, 1e-9 * tp) << base;
+      EXPECT_GE(t.column("f1_sem")[i], 0) << base;
+      EXPECT_GE(t.column("f2_sem")[i], 0) << base;
+      if (i == 1) {  // x_R = R t_paper^-alpha: against distributions_mean.csv's R
+        const Table m = read_csv(dir / "ensembles" / (d == 2 ? "d2_r0.1" : "d3_r0.1") /
+                                 "distributions_mean.csv");
+        EXPECT_NEAR(t.column("x_R")[i], m.column("R")[i] * std::pow(tp, -a), 1e-9) << base;
+      }
+    }
     const std::string gp = read_file(dir / (std::string(base) + ".gp"));
-    EXPECT_NE(gp.find("R t^{-" + std::string(d == 2 ? "1/3" : "1/4") + "} (simulation units)"),
+    EXPECT_NE(gp.find("R t^{-" + std::string(d == 2 ? "1/3" : "1/4") + "} (t in paper units)"),
               std::string::npos)
         << base;
-    EXPECT_NE(gp.find("} (simulation units)'\nset ylabel 't^{-"), std::string::npos) << base;
+    EXPECT_NE(gp.find("} (t in paper units)'\nset ylabel 't^{-"), std::string::npos) << base;
     EXPECT_EQ(gp.find("set xrange [*"), std::string::npos) << base;
+    EXPECT_NE(gp.find(":4:5 with yerrorlines"), std::string::npos) << base;
+    EXPECT_NE(gp.find(":8 with yerrorlines"), std::string::npos) << base;
   }
   // Fig. 2's A(t) on log axes; Fig. 3's 2D and 3D curves share no colour.
   EXPECT_NE(read_file(dir / "fig2_anisotropy.gp").find("set logscale xy"), std::string::npos);
   {
     const std::string gp = read_file(dir / "fig3_active_energy.gp");
     std::set<std::string> colours[2];
-    const std::regex curve(R"(\$1==([23]) && \$2==[0-9.]+ \? \$4 : 1/0\):[57] lc (\d+))");
+    const std::regex curve(R"(\$1==([23]) && \$2==[0-9.]+ \? \$4 : 1/0\):\(\$[57]\*1e\d\) lc (\d+))");
     for (auto it = std::sregex_iterator(gp.begin(), gp.end(), curve); it != std::sregex_iterator();
          ++it)
       colours[(*it)[1] == "2" ? 0 : 1].insert((*it)[2]);
@@ -159,6 +236,7 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
     for (const auto& c : colours[0]) EXPECT_EQ(colours[1].count(c), 0u) << "lc " << c;
   }
 
+  expect_figure_scripts_as_drawn(dir);
   const std::string report = read_file(dir / "report.md");
   EXPECT_TRUE(names_only_existing_files(report, dir)) << "report.md";
   for (const char* q : {"exponent of R_t", "phi1", "band packing", "Definitions", "declared reading",

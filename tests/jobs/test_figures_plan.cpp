@@ -2,6 +2,7 @@
 // keep each front inside its box, cutoffs whose crossover comes after the run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -199,6 +200,41 @@ TEST(FiguresPlan, SnowplowCasesAreOptInUnboundedAndLongEnoughForADecadeOfPlateau
     }
     EXPECT_EQ(seen, (std::set<std::pair<int, double>>{{2, 0.1}, {2, 0.5}, {3, 0.1}, {3, 0.5}}));
   }
+}
+
+TEST(FiguresPlan, TheCollapseIsDrawnAtThePapersTimesWhereTheRunReachesThem) {
+  // The paper's Fig. 4 (2D, r = 0.1) at t = 25000, 37500, 50000 and Fig. 5 (3D) at 30000, 50000,
+  // 75000, in its unit 1/(v_0 n^(1/d)). --full's runs reach them (2D t_max = 2e5 is t_paper =
+  // 1e5); before, its snapshots were the paper's ratios ending at t_max, twice the paper's times
+  // in 2D. A run longer than the paper's times keeps a snapshot at t_max for the readings made
+  // at the last snapshot (packing, inner edge).
+  const FiguresPlan full = figures_plan(FiguresMode::Full, 1);
+  const std::vector<double> paper[2] = {{25000, 37500, 50000}, {30000, 50000, 75000}};
+  for (int d : {2, 3}) {
+    const FigureCase* c = find_case(full, d, 0.1);
+    ASSERT_NE(c, nullptr);
+    ASSERT_TRUE(c->collapse);
+    EXPECT_TRUE(c->paper_times) << c->name;
+    const auto& p = c->spec.physics;
+    ASSERT_EQ(c->figure_times.size(), 3u) << c->name;
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_NEAR(p.paper_time(c->figure_times[k]), paper[d - 2][k], 1e-9 * paper[d - 2][k])
+          << c->name;
+      EXPECT_TRUE(std::count(c->spec.snapshot_times.begin(), c->spec.snapshot_times.end(),
+                             c->figure_times[k]))
+          << c->name << " has no snapshot at " << c->figure_times[k];
+    }
+    EXPECT_EQ(c->spec.snapshot_times.back(), p.t_max) << c->name;
+  }
+  // --quick's 3D run (t_max 3e4, t_paper 1.9e4) does not reach 75000: the paper's times in
+  // ratio, ending at t_max, and said to be.
+  const FiguresPlan quick = figures_plan(FiguresMode::Quick, 1);
+  const FigureCase* q = find_case(quick, 3, 0.1);
+  ASSERT_NE(q, nullptr);
+  EXPECT_FALSE(q->paper_times);
+  ASSERT_EQ(q->figure_times.size(), 3u);
+  EXPECT_EQ(q->figure_times.back(), q->spec.physics.t_max);
+  EXPECT_NEAR(q->figure_times.front() / q->figure_times.back(), 30000.0 / 75000, 1e-12);
 }
 
 TEST(FiguresPlan, Fig1IsAtThePapersTimesInThePapersBox) {

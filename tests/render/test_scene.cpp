@@ -120,6 +120,19 @@ TEST(Scene, ScaledSpeedIsOverTheActiveRmsAndUsesTheFixedRange) {
   EXPECT_TRUE(sp.bar_note.empty());
 }
 
+TEST(Scene, AColourBarTitleGivenInTheStyleReplacesTheFieldsAndKeepsTheLogMark) {
+  // Fig. 1b of `figures` says the unit of its speeds ("speed |v| / v_0"), which the field's
+  // own title cannot know.
+  const Snapshot s = ring(2, 1);
+  Style st;
+  st.field = Field::Speed;
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).bar_label, "speed |v|");
+  st.bar_label = "speed |v| / v_0";
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).bar_label, "speed |v| / v_0");
+  st.scale = Scale::Log;
+  EXPECT_EQ(build_scene({&s}, st, view(), painter()).bar_label, "speed |v| / v_0 (log)");
+}
+
 // Before the first collision only the kicked particle moves and none is active: it is drawn,
 // at v / v_rms = 1 of its own speed, and the particles at rest are not.
 TEST(Scene, TheKickedParticleIsDrawnBeforeTheFirstCollision) {
