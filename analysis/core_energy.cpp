@@ -87,4 +87,38 @@ PressureProfile kinetic_pressure(const Snapshot& s, double front, const Binning&
   return p;
 }
 
+CoreShareTrend core_share_trend(std::span<const double> t, std::span<const double> mean,
+                                std::span<const double> sem, double t_from, double t_to) {
+  GS_CHECK(t.size() == mean.size() && t.size() == sem.size());
+  CoreShareTrend c;
+  std::size_t a = t.size(), b = t.size();
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] > 0 && (a == t.size() || std::abs(std::log(t[k] / t_from)) <
+                                          std::abs(std::log(t[a] / t_from))))
+      a = k;
+    if (t[k] <= t_to) b = k;
+  }
+  if (a >= t.size() || b >= t.size() || !(t[b] > t[a])) {
+    c.reading = "no interval";
+    return c;
+  }
+  c.t_from = t[a];
+  c.t_to = t[b];
+  c.from = mean[a];
+  c.from_sem = sem[a];
+  c.to = mean[b];
+  c.to_sem = sem[b];
+  if (!(c.from > 0 && c.to > 0)) {
+    c.reading = "no core";
+    return c;
+  }
+  const double span = std::log(c.t_to / c.t_from);
+  c.slope = std::log(c.to / c.from) / span;
+  const double ra = std::isfinite(c.from_sem) ? c.from_sem / c.from : 0;
+  const double rb = std::isfinite(c.to_sem) ? c.to_sem / c.to : 0;
+  c.sigma = std::sqrt(ra * ra + rb * rb) / span;
+  c.reading = c.slope < -2 * c.sigma ? "falls" : c.slope > 2 * c.sigma ? "rises" : "flat";
+  return c;
+}
+
 }  // namespace gs

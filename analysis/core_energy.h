@@ -16,6 +16,8 @@
 //    left out, which understates the dense band's pressure, not the dilute core's. Subtracting
 //    the shell's own mean takes one degree of freedom of n d: a bias of -1/(n d) per shell.
 #include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "sim/histogram.h"
@@ -43,5 +45,24 @@ struct PressureProfile {
   std::vector<std::size_t> count;
 };
 PressureProfile kinetic_pressure(const Snapshot& s, double front_radius, const Binning& binning);
+
+// The ensemble's core share between two sample times: its local slope d ln share / d ln t from
+// the means at the sample nearest t_from and the last sample at or before t_to, with sigma from
+// their standard errors as if independent (they are positively correlated through shared
+// realisations, so this overstates it), and what it says: "falls" (slope below 0 by more than
+// 2 sigma: the momentum-conserving snowplow's cold interior), "flat" (within 2 sigma of 0: as a
+// core that keeps a finite share, the pressure-driven one, would be; as decisive as sigma is
+// small), "rises", or "no core" when either mean is not positive.
+struct CoreShareTrend {
+  double t_from = std::numeric_limits<double>::quiet_NaN();
+  double t_to = std::numeric_limits<double>::quiet_NaN();
+  double from = std::numeric_limits<double>::quiet_NaN(), from_sem = from;
+  double to = std::numeric_limits<double>::quiet_NaN(), to_sem = to;
+  double slope = std::numeric_limits<double>::quiet_NaN();
+  double sigma = std::numeric_limits<double>::quiet_NaN();
+  std::string reading;
+};
+CoreShareTrend core_share_trend(std::span<const double> t, std::span<const double> mean,
+                                std::span<const double> sem, double t_from, double t_to);
 
 }  // namespace gs
