@@ -108,6 +108,10 @@ CoreShareTrend core_share_trend(std::span<const double> t, std::span<const doubl
   c.from_sem = sem[a];
   c.to = mean[b];
   c.to_sem = sem[b];
+  if (!(std::isfinite(c.from) && std::isfinite(c.to))) {
+    c.reading = "not measured";  // no band yet, or realisations from before the measure
+    return c;
+  }
   if (!(c.from > 0 && c.to > 0)) {
     c.reading = "no core";
     return c;

@@ -302,8 +302,10 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   m.band.fraction.clear();
   m.band.active.clear();
   m.inner = inner_edge_speed(active);
+  // Without a band (no front) there is no rho / R_front to bin: none, rather than zeros.
   const CoreEnergy core = core_energy(active, spec.physics.density);
-  m.pressure = kinetic_pressure(active, core.front, pressure_binning(spec)).pressure;
+  if (std::isfinite(core.front))
+    m.pressure = kinetic_pressure(active, core.front, pressure_binning(spec)).pressure;
   return m;
 }
 
@@ -485,6 +487,13 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
   Realisation r;
   r.index = index;
   r.timeseries = table(kRealisationFiles[0]);
+  // Folders and states in flight written before the core's share was measured: the column is
+  // added as NaN, so that they average with newer realisations (to NaN where one lacks it) and
+  // a state in flight goes on with the newer rows.
+  if (r.timeseries.has("anisotropy_isotropic") && !r.timeseries.has("core_energy_share"))
+    r.timeseries.add_column("core_energy_share",
+                            std::vector<double>(r.timeseries.rows(),
+                                                std::numeric_limits<double>::quiet_NaN()));
   const Table dist = table(kRealisationFiles[1]);
   const Table sc = table(kRealisationFiles[2]);
   // UserError if missing; the pressure came later, and older folders are read without it.

@@ -1,5 +1,6 @@
 #include "jobs/figures_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -235,7 +236,8 @@ std::string core_share_markdown(const std::vector<CaseResult>& results) {
         "local slope d ln share / d ln t over each decade (sigma from the two standard errors). "
         "A momentum-conserving snowplow has a cold interior whose share falls to 0 (\"falls\": "
         "slope below 0 by more than 2 sigma); a pressure-driven one keeps a finite share "
-        "(\"flat\": within 2 sigma of 0).\n\n"
+        "(\"flat\": within 2 sigma of 0). Cases run before the share was measured are left "
+        "out; a case mixing such realisations with newer ones reads n/a.\n\n"
         "| case | share at t_max/100 | share at t_max/10 | share at t_max | slope, decade "
         "before | reading | slope, last decade | reading |\n"
         "|---|---|---|---|---|---|---|---|\n";
@@ -246,6 +248,7 @@ std::string core_share_markdown(const std::vector<CaseResult>& results) {
     if (!ts.has("core_energy_share")) continue;
     const auto& t = ts.column("t");
     const auto& m = ts.column("core_energy_share");
+    if (std::none_of(m.begin(), m.end(), [](double x) { return std::isfinite(x); })) continue;
     const auto& e = ts.column("core_energy_share_sem");
     const CoreShareTrend early = core_share_trend(t, m, e, p.t_max / 100, p.t_max / 10);
     const CoreShareTrend late = core_share_trend(t, m, e, p.t_max / 10, p.t_max);
