@@ -13,46 +13,51 @@ bool active_at(const Snapshot& s, std::size_t i) {
   return s.active.empty() || s.active[i] != 0;
 }
 
-// Positions and velocities of the active particles relative to their centre of mass and its
-// velocity (Shape), in the snapshot's dimension.
-struct Relative {
+// The centre of mass of the active particles and its velocity (Shape), and a visit of each
+// active particle's position and velocity relative to them in the first d axes, without a copy
+// of the arrays (millions of spheres in 3D).
+struct Frame {
   int d = 0;
-  std::vector<Eigen::Vector3d> x, v;
+  Eigen::Vector3d centre, velocity;
 };
-Relative relative_to_centre(const Snapshot& s) {
+Frame frame_of(const Snapshot& s) {
   if (!s.has_velocity()) throw UserError("the core's energy needs velocities");
   const Shape shape = measure_shape(s);
-  Relative r;
-  r.d = shape.dim;
-  if (r.d != 2 && r.d != 3) throw UserError("the core's energy: dimension must be 2 or 3");
+  if (shape.dim != 2 && shape.dim != 3)
+    throw UserError("the core's energy: dimension must be 2 or 3");
+  return {shape.dim, shape.centre, shape.centre_velocity};
+}
+template <class F>
+void for_each_active(const Snapshot& s, const Frame& f, F&& visit) {
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (!active_at(s, i)) continue;
-    Eigen::Vector3d x = s.position[i] - shape.centre, v = s.velocity[i] - shape.centre_velocity;
-    for (int k = r.d; k < 3; ++k) x[k] = v[k] = 0;
-    r.x.push_back(x);
-    r.v.push_back(v);
+    Eigen::Vector3d x = s.position[i] - f.centre, v = s.velocity[i] - f.velocity;
+    for (int k = f.d; k < 3; ++k) x[k] = v[k] = 0;
+    visit(x, v);
   }
-  return r;
 }
 
 }  // namespace
 
 CoreEnergy core_energy(const Snapshot& s, double ambient, double shell) {
-  const Relative r = relative_to_centre(s);
-  std::vector<double> distance(r.x.size());
-  for (std::size_t i = 0; i < r.x.size(); ++i) distance[i] = r.x[i].norm();
-  const ShellFront f = shell_front(distance, r.d, ambient, shell);
+  const Frame f = frame_of(s);
+  std::vector<double> distance;
+  for_each_active(s, f, [&](const Eigen::Vector3d& x, const Eigen::Vector3d&) {
+    distance.push_back(x.norm());
+  });
+  const ShellFront front = shell_front(distance, f.d, ambient, shell);
   CoreEnergy c;
-  c.front = f.radius;
-  c.inner = f.inner_radius;
-  for (std::size_t i = 0; i < r.x.size(); ++i) {
-    const double e = 0.5 * r.v[i].squaredNorm();
+  c.front = front.radius;
+  c.inner = front.inner_radius;
+  std::size_t i = 0;
+  for_each_active(s, f, [&](const Eigen::Vector3d&, const Eigen::Vector3d& v) {
+    const double e = 0.5 * v.squaredNorm();
     c.total_energy += e;
-    if (distance[i] < c.inner) {
+    if (distance[i++] < c.inner) {
       c.core_energy += e;
       ++c.core_count;
     }
-  }
+  });
   if (std::isfinite(c.inner) && c.total_energy > 0) c.share = c.core_energy / c.total_energy;
   return c;
 }
@@ -60,7 +65,7 @@ CoreEnergy core_energy(const Snapshot& s, double ambient, double shell) {
 PressureProfile kinetic_pressure(const Snapshot& s, double front, const Binning& binning) {
   if (!(binning.bins >= 1 && binning.hi > binning.lo && binning.lo >= 0))
     throw UserError("the pressure profile needs bins on 0 <= lo < hi");
-  const Relative r = relative_to_centre(s);
+  const Frame f = frame_of(s);
   PressureProfile p;
   p.edges = histogram_edges({}, binning);
   const std::size_t n = p.edges.size() - 1;
@@ -68,21 +73,21 @@ PressureProfile kinetic_pressure(const Snapshot& s, double front, const Binning&
   p.count.assign(n, 0);
   if (!(front > 0 && std::isfinite(front))) return p;
   std::vector<double> squares(n, 0.0), radial(n, 0.0);
-  for (std::size_t i = 0; i < r.x.size(); ++i) {
-    const double rho = r.x[i].norm(), x = rho / front;
-    if (!(x >= p.edges.front() && x <= p.edges.back())) continue;
-    const std::size_t b = bin_of(p.edges, x);
+  for_each_active(s, f, [&](const Eigen::Vector3d& x, const Eigen::Vector3d& v) {
+    const double rho = x.norm(), u = rho / front;
+    if (!(u >= p.edges.front() && u <= p.edges.back())) return;
+    const std::size_t b = bin_of(p.edges, u);
     ++p.count[b];
-    squares[b] += r.v[i].squaredNorm();
-    if (rho > 0) radial[b] += r.v[i].dot(r.x[i]) / rho;
-  }
+    squares[b] += v.squaredNorm();
+    if (rho > 0) radial[b] += v.dot(x) / rho;
+  });
   for (std::size_t b = 0; b < n; ++b) {
     if (p.count[b] == 0) continue;
     const double volume =
-        sphere_volume(r.d, p.edges[b + 1] * front) - sphere_volume(r.d, p.edges[b] * front);
+        sphere_volume(f.d, p.edges[b + 1] * front) - sphere_volume(f.d, p.edges[b] * front);
     // sum |v - u|^2 with u the shell's mean radial velocity: sum |v|^2 - n u^2.
     const double fluctuation = squares[b] - radial[b] * radial[b] / double(p.count[b]);
-    p.pressure[b] = fluctuation / (r.d * volume);
+    p.pressure[b] = fluctuation / (f.d * volume);
   }
   return p;
 }
