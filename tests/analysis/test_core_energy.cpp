@@ -171,6 +171,35 @@ TEST(CoreEnergy, RefusesSnapshotsItCannotMeasure) {
   EXPECT_THROW(kinetic_pressure(make_blast(2).s, 80, {.bins = 0, .lo = 0, .hi = 1}), UserError);
 }
 
+// The share's trend over a decade: a share falling as t^-0.5 with 5% standard errors reads
+// "falls" (slope -0.5, sigma 0.031: 16 sigma), a constant one "flat", a rising one "rises"; the
+// same falling share with 50% errors (sigma 0.31) is no longer told from flat. Slope exact to
+// rounding (1e-12) on a pure power law.
+TEST(CoreEnergy, ShareTrendTellsAFallingCoreFromAFlatOne) {
+  std::vector<double> t, falling, flat, rising, sem5, sem50;
+  for (int i = 0; i <= 40; ++i) {
+    t.push_back(std::pow(10.0, 2 + i / 20.0));
+    falling.push_back(0.1 * std::pow(t.back() / 100, -0.5));
+    flat.push_back(0.08);
+    rising.push_back(0.01 * std::pow(t.back() / 100, 0.3));
+  }
+  for (double y : falling) {
+    sem5.push_back(0.05 * y);
+    sem50.push_back(0.5 * y);
+  }
+  const CoreShareTrend f = core_share_trend(t, falling, sem5, 1e3, 1e4);
+  EXPECT_EQ(f.reading, "falls");
+  EXPECT_NEAR(f.slope, -0.5, 1e-12);
+  EXPECT_NEAR(f.sigma, std::sqrt(2.0) * 0.05 / std::log(10.0), 1e-12);
+  EXPECT_EQ(core_share_trend(t, flat, sem5, 1e3, 1e4).reading, "flat");
+  EXPECT_EQ(core_share_trend(t, rising, sem5, 1e3, 1e4).reading, "rises");
+  EXPECT_EQ(core_share_trend(t, falling, sem50, 1e3, 1e4).reading, "flat");
+  std::vector<double> none(t.size(), std::nan(""));
+  EXPECT_EQ(core_share_trend(t, none, sem5, 1e3, 1e4).reading, "not measured");
+  std::vector<double> zero(t.size(), 0.0);
+  EXPECT_EQ(core_share_trend(t, zero, sem5, 1e3, 1e4).reading, "no core");
+}
+
 // A kicked 2D gas's realisation measures the core's share at every sample with a band (a
 // fraction) and the pressure at its snapshots; a folder written before either existed (the
 // columns taken out) is read without them and averages with the new one, to NaN where one
