@@ -125,6 +125,8 @@ std::vector<double> local_packing(const Snapshot& s, int d, double a) {
 
 }  // namespace
 
+double sphere_volume(int dim, double radius) { return ball(dim, radius); }
+
 ShellFront shell_front(std::span<const double> distances, int dim, double ambient, double shell) {
   GS_CHECK(dim == 2 || dim == 3);
   GS_CHECK(shell > 0 && ambient > 0);
@@ -146,6 +148,12 @@ ShellFront shell_front(std::span<const double> distances, int dim, double ambien
   // Linear between the centres of shells j - 1 and j.
   const double c0 = (j - 0.5) * shell;
   f.radius = c0 + (density[j - 1] - half) / (density[j - 1] - density[j]) * shell;
+  std::size_t i = peak;
+  while (i > 0 && density[i - 1] >= half) --i;
+  // Linear between the centres of shells i - 1 (below half) and i.
+  f.inner_radius = i == 0 ? 0.0
+                          : (i - 0.5) * shell +
+                                (half - density[i - 1]) / (density[i] - density[i - 1]) * shell;
   return f;
 }
 

@@ -32,9 +32,16 @@ struct BandMeasureOptions {
   double shell = 2;  // width of the shells of the front radius, diameters
 };
 
+// The volume (area in 2D) of the ball of `radius` in dim = 2 or 3 dimensions.
+double sphere_volume(int dim, double radius);
+
 struct ShellFront {
   double radius = std::numeric_limits<double>::quiet_NaN();
   double peak_density = std::numeric_limits<double>::quiet_NaN();  // number per unit volume
+  // The band's inner edge, the same rule going inward: where the active density, going inward
+  // from the densest shell, first falls below half the ambient density; 0 when it never does
+  // (the band reaches the centre).
+  double inner_radius = std::numeric_limits<double>::quiet_NaN();
 };
 
 // From distances of active particles to their centre; NaN when the densest shell is below half

@@ -37,7 +37,10 @@ Table distributions(const EnsembleSums& sums) {
                                           "profile_mean_radial_velocity",
                                           "packing",
                                           "P_packing",
-                                          "P_packing_sem"};
+                                          "P_packing_sem",
+                                          "pressure_x",
+                                          "pressure",
+                                          "pressure_sem"};
   for (const auto& n : names) out.add_column(n, {});
   for (const auto& s : sums.snapshots()) {
     const Histogram pr = s.radius.mean(), pv = s.speed.mean(), pp = s.packing.mean();
@@ -47,6 +50,13 @@ Table distributions(const EnsembleSums& sums) {
     const Histogram fv = scaled_speed_distribution(pv, s.t, a);
     const RadialProfile prof = s.profile.mean();
     const auto prof_se = s.profile.density_standard_error();
+    // The kinetic pressure against rho / R_front (analysis/core_energy.h); NaN when no
+    // realisation measured it (folders from before it).
+    const Binning xb = pressure_binning(sums.spec());
+    const bool has_p = s.pressure.count() > 0 && s.pressure.length() == pr.bins();
+    const std::vector<double> p = has_p ? s.pressure.mean() : std::vector<double>{};
+    const std::vector<double> p_se = has_p ? s.pressure.standard_error() : std::vector<double>{};
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t b = 0; b < pr.bins(); ++b) {
       const std::vector<double> row = {s.t,
                                        double(b),
@@ -67,7 +77,10 @@ Table distributions(const EnsembleSums& sums) {
                                        prof.mean_radial_velocity[b],
                                        pp.centre(b),
                                        pp.values[b],
-                                       pp_se[b]};
+                                       pp_se[b],
+                                       xb.lo + (double(b) + 0.5) * (xb.hi - xb.lo) / xb.bins,
+                                       has_p ? p[b] : nan,
+                                       has_p ? p_se[b] : nan};
       out.add_row(row);
     }
   }

@@ -66,6 +66,13 @@ void EnsembleSums::add(const Realisation& r, const std::string& source) {
                                                            m.measures.local_median,
                                                            m.measures.local_upper};
     s.scalars.add(v);
+    if (!m.pressure.empty()) {
+      if (s.pressure.count() == 0) s.pressure = MeanAccumulator(m.pressure.size());
+      if (m.pressure.size() != s.pressure.length())
+        throw UserError(source + ": " + std::to_string(m.pressure.size()) +
+                        " pressure shells, the ensemble " + std::to_string(s.pressure.length()));
+      s.pressure.add(m.pressure);
+    }
   }
 }
 
@@ -83,6 +90,13 @@ void EnsembleSums::merge(const EnsembleSums& other) {
     s.packing.merge(o.packing);
     s.profile.merge(o.profile);
     s.scalars.merge(o.scalars);
+    if (o.pressure.count() == 0) continue;
+    if (s.pressure.count() == 0)
+      s.pressure = o.pressure;
+    else if (s.pressure.length() == o.pressure.length())
+      s.pressure.merge(o.pressure);
+    else
+      throw UserError("the ensembles to merge have pressure profiles of different shells");
   }
 }
 

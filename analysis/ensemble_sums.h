@@ -35,6 +35,9 @@ class EnsembleSums {
     HistogramAverage radius, speed, packing;
     ProfileAverage profile;
     MeanAccumulator scalars{kSnapshotScalars.size()};
+    // The kinetic pressure profile (SnapshotMeasures::pressure) of the realisations that have
+    // one (folders written before it was measured have none); length 0 until the first.
+    MeanAccumulator pressure;
   };
 
   explicit EnsembleSums(const EnsembleSpec& spec);

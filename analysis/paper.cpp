@@ -479,6 +479,39 @@ Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& reading
   return c;
 }
 
+Comparison phi1_near_elastic_comparison(int d, const std::vector<CrossoverPoint>& points) {
+  std::vector<CrossoverPoint> near;
+  for (const auto& p : points)
+    if (p.control <= 1 - kNearElasticR * kNearElasticR * (1 - 1e-12)) near.push_back(p);
+  const CrossoverExponentFit fit = fit_crossover_points(near);
+  Comparison c = crossover_comparison(fit);
+  c.quantity = "phi1 (time to E_0/2, r >= " + fmt(kNearElasticR) + ")";
+  c.d = d;
+  c.theory = kPhi1[d == 2 ? 0 : 1];
+  c.sigma_paper = kPhi1Sigma[d == 2 ? 0 : 1];
+  c.role = Role::Sensitivity;
+  c.source = "paper: t_c1 ~ (1 - r^2)^-phi1 as r -> 1; scaling estimate (d + 2)/2 = " +
+             fmt(phi1_scaling_estimate(d));
+  c.figure = "fig10_energy_fraction_times.png";
+  if (fit.points < 3) {
+    c.measured = std::numeric_limits<double>::quiet_NaN();
+    c.note = "fewer than three r >= " + fmt(kNearElasticR) + " reach E_0/2 (`figures --limit`)";
+    return c;
+  }
+  c.ci_lo = fit.ci_lo;
+  c.ci_hi = fit.ci_hi;
+  std::string pairs;
+  for (const auto& e : local_crossover_exponents(near))
+    pairs += "; " + e.from + " and " + e.to + ": " + fmt(e.phi) + " [" + fmt(e.ci_lo) + ", " +
+             fmt(e.ci_hi) + "]";
+  const Phi1Weighing w = weigh_phi1(d, fit.fit.phi, fit.ci_lo, fit.ci_hi);
+  c.note = "-d ln t_half / d ln(1 - r^2) fitted over " + std::to_string(fit.points) + " r, 95% " +
+           "interval [" + fmt(fit.ci_lo) + ", " + fmt(fit.ci_hi) + "]" + pairs +
+           "; z against the scaling estimate " + fmt(w.z_scaling, 3) + ", against the paper's " +
+           fmt(w.z_paper, 3);
+  return c;
+}
+
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit) {
   Comparison c = crossover_comparison(fit);
   c.quantity = "phi2";

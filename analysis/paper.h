@@ -143,6 +143,14 @@ Comparison phi1_elastic_limit_comparison(int d, const std::vector<LocalCrossover
 // readings go to the sensitivity table beside them.
 Comparison phi1_energy_comparison(int d, const std::vector<Phi1Reading>& readings, double level);
 Comparison phi2_comparison(int d, double r, const CrossoverExponentFit& fit);
+// phi1 nearest the elastic limit from the time <E_t> first falls to E_0/2 (`points`: that
+// level's points, analysis/energy_scaling.h time_to_fraction) at r >= kNearElasticR only, the
+// short runs of `figures --limit` that reach E_0/2 before any plateau: the least-squares fit
+// over those r with its bootstrap interval, the neighbouring pairs' readings in the note, the
+// scaling estimate's z beside the paper's. One sensitivity row (the declared phi1 is the
+// collapse); not measured with fewer than three such r reaching E_0/2.
+inline constexpr double kNearElasticR = 0.97;
+Comparison phi1_near_elastic_comparison(int d, const std::vector<CrossoverPoint>& points);
 
 // A phi1 reading nearest the elastic limit (phi with its 95% interval [ci_lo, ci_hi]) weighed
 // between the two values on offer: the paper's (2.25, 3.0) and the scaling estimate (d + 2)/2

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "analysis/core_energy.h"
 #include "analysis/realisation_in_flight.h"
 #include "sim/engine.h"
 #include "sim/error.h"
@@ -73,7 +74,8 @@ const std::vector<std::string> kDistributionColumns = {"t",
                                                        "profile_radial_velocity_sum",
                                                        "packing_lo",
                                                        "packing_hi",
-                                                       "P_packing"};
+                                                       "P_packing",
+                                                       "pressure"};
 
 const std::vector<std::string> kScalarColumns = {"t",
                                                  "R_samples",
@@ -244,6 +246,10 @@ Binning packing_binning(const EnsembleSpec& spec) {
   return {.bins = spec.bins, .lo = 0, .hi = 1};
 }
 
+Binning pressure_binning(const EnsembleSpec& spec) {
+  return {.bins = spec.bins, .lo = 0, .hi = 1.5};
+}
+
 std::vector<double> sample_times(const EnsembleSpec& spec) {
   return merge_times(log_times(0.1, spec.physics.t_max, spec.per_decade), spec.snapshot_times);
 }
@@ -296,26 +302,30 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   m.band.fraction.clear();
   m.band.active.clear();
   m.inner = inner_edge_speed(active);
+  // Without a band (no front) there is no rho / R_front to bin: none, rather than zeros.
+  const CoreEnergy core = core_energy(active, spec.physics.density);
+  if (std::isfinite(core.front))
+    m.pressure = kinetic_pressure(active, core.front, pressure_binning(spec)).pressure;
   return m;
 }
 
 namespace {
 
-// P_r and A's isotropic floor of the active particles at sample k, appended to `row` (NaN while
-// there is no band). The shuffles draw from a stream keyed by the sample, so a realisation
+// P_r, A's isotropic floor and the core's energy share of the active particles at sample k,
+// appended to `row` (NaN while there is no band). The shuffles draw from a stream keyed by the sample, so a realisation
 // resumed from its state in flight draws what an unbroken one does.
 void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64_t index,
                       std::size_t k, double active, Snapshot& act, std::vector<double>& row) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (active < kFrontMinActive) {
-    row.push_back(nan);
-    row.push_back(nan);
+    row.insert(row.end(), kAddedColumns.size() - 1, nan);
     return;
   }
   sim.active_snapshot(act);
   row.push_back(radial_momentum(act));
   Rng rng(c.seed, index, Stream::Shuffle, std::array<std::int64_t, 1>{std::int64_t(k)});
   row.push_back(isotropic_anisotropy(act, rng));
+  row.push_back(core_energy(act, c.density).share);
 }
 
 }  // namespace
@@ -432,6 +442,8 @@ std::vector<RealisationFile> realisation_files(const Realisation& r) {
       dist.column("profile_density")[first + b] = m.profile.density[b];
       dist.column("profile_speed_sum")[first + b] = m.profile.speed_sum[b];
       dist.column("profile_radial_velocity_sum")[first + b] = m.profile.radial_velocity_sum[b];
+      dist.column("pressure")[first + b] =
+          m.pressure.empty() ? std::numeric_limits<double>::quiet_NaN() : m.pressure[b];
     }
     put_histogram(dist, first, m.radius, "R");
     put_histogram(dist, first, m.speed, "v");
@@ -475,9 +487,19 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
   Realisation r;
   r.index = index;
   r.timeseries = table(kRealisationFiles[0]);
+  // Folders and states in flight written before the core's share was measured: the column is
+  // added as NaN, so that they average with newer realisations (to NaN where one lacks it) and
+  // a state in flight goes on with the newer rows.
+  if (r.timeseries.has("anisotropy_isotropic") && !r.timeseries.has("core_energy_share"))
+    r.timeseries.add_column("core_energy_share",
+                            std::vector<double>(r.timeseries.rows(),
+                                                std::numeric_limits<double>::quiet_NaN()));
   const Table dist = table(kRealisationFiles[1]);
   const Table sc = table(kRealisationFiles[2]);
-  for (const auto& n : kDistributionColumns) (void)dist.column(n);  // UserError if missing
+  // UserError if missing; the pressure came later, and older folders are read without it.
+  for (const auto& n : kDistributionColumns)
+    if (n != "pressure") (void)dist.column(n);
+  const bool has_pressure = dist.has("pressure");
   for (const auto& n : kScalarColumns) (void)sc.column(n);
   const auto& t = dist.column("t");
   std::size_t first = 0;
@@ -507,6 +529,9 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
       const double nan = std::numeric_limits<double>::quiet_NaN();
       m.profile.mean_speed.push_back(n > 0 ? ss / n : nan);
       m.profile.mean_radial_velocity.push_back(n > 0 ? rs / n : nan);
+      // NaN: written by a build that had no pressure (round trip of an older folder).
+      if (has_pressure && !std::isnan(dist.column("pressure")[first]))
+        m.pressure.push_back(dist.column("pressure")[first + b]);
     }
     m.band.typical = s("packing_typical");
     m.band.upper = s("packing_upper");

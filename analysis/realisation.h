@@ -54,6 +54,8 @@ EnsembleSpec parse_spec(std::string_view text, const std::string& source);
 Binning radius_binning(const EnsembleSpec& spec, double t);
 Binning speed_binning(const EnsembleSpec& spec, double t);
 Binning packing_binning(const EnsembleSpec& spec);
+// rho / R_front in [0, 1.5]: the core, the band and the few particles ahead of its front.
+Binning pressure_binning(const EnsembleSpec& spec);
 
 struct SnapshotMeasures {
   double t = 0;
@@ -65,6 +67,9 @@ struct SnapshotMeasures {
   BandPacking band;  // typical/upper/mean (fraction lists are not kept)
   BandMeasures measures;
   InnerEdge inner;
+  // The kinetic pressure (analysis/core_energy.h) on pressure_binning, of rho / R_front; empty
+  // when read from a folder written before it was measured.
+  std::vector<double> pressure;
 };
 
 // Active particles a realisation needs before its front radius is measured; earlier samples of
@@ -74,9 +79,11 @@ inline constexpr double kFrontMinActive = 50;
 // The columns a realisation adds to the Recorder's, from the active particles at each sample
 // with N_t >= kFrontMinActive (NaN before): the front radius (analysis/band_measures.h), the
 // radial momentum P_r and A of the same particles with their directions redrawn, the finite-N
-// floor of an isotropic cloud (sim/observables.h).
-inline constexpr std::array<const char*, 3> kAddedColumns = {"front_radius", "radial_momentum",
-                                                             "anisotropy_isotropic"};
+// floor of an isotropic cloud (sim/observables.h), and the share of their kinetic energy held
+// behind the band's inner edge (analysis/core_energy.h). Folders written before the last column
+// existed are read without it.
+inline constexpr std::array<const char*, 4> kAddedColumns = {
+    "front_radius", "radial_momentum", "anisotropy_isotropic", "core_energy_share"};
 
 struct Realisation {
   std::uint64_t index = 0;

@@ -192,6 +192,9 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     for (double level : Phi1Options{}.levels)
       cmp.push_back(phi1_energy_comparison(set.d, set.energy, level));
   }
+  for (const auto& set : x.fractions)  // E_0/2's points: the short runs near r = 1 (--limit)
+    if (set.rule == "time to E_0 x " + figure_number(0.5, 3))
+      cmp.push_back(phi1_near_elastic_comparison(set.d, set.points));
   cmp.push_back(phi2_comparison(x.tc2.front().d, 0.1, x.tc2.front().fit));
   const std::vector<std::string> problems = write_figures(plan, results, x, dir, o.formats);
   const FiguresRun run{o.mode, o.seed, o.threads, seconds_since(t0), sim_wall, resumed, plan.fig1};

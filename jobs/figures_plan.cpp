@@ -186,10 +186,31 @@ std::vector<LimitCase> limit_cases(FiguresMode m) {
             {2, 0.95, 50000, 0, 1500, 3},
             {3, 0.9, 100000, 0, 600, 3},
             {3, 0.95, 100000, 0, 600, 3}};
-  return {{2, 0.9, 2000000, 1e5, 4e5, 32, 0, 1.0 / 3},
-          {2, 0.95, 2000000, 4.5e5, 1.6e6, 24, 0, 1.0 / 3},
-          {3, 0.9, 25000000, 3.5e5, 1.2e6, 12},
-          {3, 0.95, 25000000, 0, 4e5, 8}};  // plateau_start 0: not run to its plateau
+  std::vector<LimitCase> cases = {{2, 0.9, 2000000, 1e5, 4e5, 32, 0, 1.0 / 3},
+                                   {2, 0.95, 2000000, 4.5e5, 1.6e6, 24, 0, 1.0 / 3},
+                                   {3, 0.9, 25000000, 3.5e5, 1.2e6, 12},
+                                   {3, 0.95, 25000000, 0, 4e5, 8}};  // plateau_start 0: none
+  // r = 0.97, 0.98, 0.99: phi1 nearest the elastic limit from the time <E_t> falls to E_0/2
+  // alone (analysis/paper.h phi1_near_elastic_comparison), no plateau, so each runs only past
+  // that time. Measured, one realisation each in the unbounded medium (`run --medium unbounded
+  // --restitution 0.99`, delta 1e-6 in 2D, 1e-7 in 3D): 2D r = 0.99 falls to E_0/2 at 1.41e4
+  // (0.385 E_0 at 3e4, 2.1 CPU-s to 3e4, 6e4 active); 3D r = 0.99 is still at 0.614 E_0 at
+  // 3.98e4 (1.16e6 active, 1.6e7 collisions, ~4 CPU-min at load ~9), its lost fraction growing
+  // as t^0.29, which puts E_0/2 at ~1e5: "under ~1.5e4" holds in 2D only. The other r from
+  // t_half ~ (1 - r^2)^-phi1 (2D phi1 2-2.25: r = 0.98 ~3.3e3, 0.97 ~1.4e3; 3D 2.5-3: r = 0.98
+  // 1.3e4-1.8e4, 0.97 4e3-7e3), each t_max 2-3 times that (1.5 times for 3D r = 0.99, whose
+  // collisions grow as ~t^1.5: ~480 CPU-s a realisation to 1.5e5, ~7e6 spheres made). 2D r = 0.99
+  // costs seconds, so 24 realisations each; 3D 12, and 8 at r = 0.99 (the fewest that give a
+  // percentile interval, above).
+  if (m != FiguresMode::Tiny)  // not in the smoke run: too short to reach E_0/2 there
+    for (const LimitCase& c : std::vector<LimitCase>{{2, 0.97, 2000000, 0, 5e3, 24, 0, 1.0 / 3},
+                                                     {2, 0.98, 2000000, 0, 1e4, 24, 0, 1.0 / 3},
+                                                     {2, 0.99, 2000000, 0, 3e4, 24, 0, 1.0 / 3},
+                                                     {3, 0.97, 25000000, 0, 1.5e4, 12},
+                                                     {3, 0.98, 25000000, 0, 4e4, 12},
+                                                     {3, 0.99, 25000000, 0, 1.5e5, 8}})
+      cases.push_back(c);
+  return cases;
 }
 constexpr double kLimitCutoff2D = 1e-6, kLimitCutoff3D = 1e-7;
 

@@ -20,8 +20,9 @@ enum class FiguresMode { Tiny, Quick, Full };
 // 1/4 is reached on a plateau that passes the drift rule; their exponents are compared, their
 // t_c1 stay out of phi1 (the paper cases of the same r give it).
 // Limit (opt-in, `figures --limit`): 2D and 3D r = 0.9 and 0.95 in the unbounded
-// medium, run until E_t's local slope has plateaued; their t_c1 and energy curves join phi1's
-// readings between neighbouring r, in place of a paper case of the same (d, r).
+// medium, run until E_t's local slope has plateaued, and (not in --tiny) r = 0.97, 0.98, 0.99
+// run only until <E_t> has fallen to E_0/2; their t_c1 and energy curves join phi1's readings
+// between neighbouring r, in place of a paper case of the same (d, r).
 // Snowplow (opt-in, `figures --snowplow`): 3D and 2D r = 0.1 and 0.5 in the unbounded medium, run
 // long enough that the local slopes of R_t, N_t, E_t and P_r can tell the momentum-conserving
 // snowplow (alpha = 1/(d+1)) from the pressure-driven one (2/(d+4), analysis/snowplow.h); their

@@ -1,8 +1,10 @@
 #include "jobs/figures_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "analysis/core_energy.h"
 #include "analysis/json.h"
 #include "analysis/snowplow.h"
 #include "io/atomic_file.h"
@@ -233,6 +235,75 @@ std::string snowplow_markdown(const std::vector<CaseResult>& results) {
   return md.str();
 }
 
+std::string share_cell(double mean, double sem) {
+  return figure_number(mean, 3) + " +- " + figure_number(sem, 2);
+}
+
+std::string trend_cell(const CoreShareTrend& c) {
+  if (!std::isfinite(c.slope)) return "- | " + c.reading;
+  return figure_number(c.slope, 3) + " +- " + figure_number(c.sigma, 2) + " | " + c.reading;
+}
+
+// The core's share of the energy over time (analysis/core_energy.h), per r < 1 case that
+// measured it: at t_max / 100, / 10 and t_max, and its local slope over each decade.
+std::string core_share_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "### The hot core\n\n"
+        "The share of the active particles' kinetic energy (centre-of-mass frame) held behind "
+        "the band's inner edge (Definitions), mean +- standard error over realisations, and its "
+        "local slope d ln share / d ln t over each decade (sigma from the two standard errors). "
+        "A momentum-conserving snowplow has a cold interior whose share falls to 0 (\"falls\": "
+        "slope below 0 by more than 2 sigma); a pressure-driven one keeps a finite share "
+        "(\"flat\": within 2 sigma of 0). Cases run before the share was measured are left "
+        "out; a case mixing such realisations with newer ones reads n/a.\n\n"
+        "| case | share at t_max/100 | share at t_max/10 | share at t_max | slope, decade "
+        "before | reading | slope, last decade | reading |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    if (p.elastic() || c.plan->delta_scan) continue;
+    const Table ts = c.sums.timeseries();
+    if (!ts.has("core_energy_share")) continue;
+    const auto& t = ts.column("t");
+    const auto& m = ts.column("core_energy_share");
+    if (std::none_of(m.begin(), m.end(), [](double x) { return std::isfinite(x); })) continue;
+    const auto& e = ts.column("core_energy_share_sem");
+    const CoreShareTrend early = core_share_trend(t, m, e, p.t_max / 100, p.t_max / 10);
+    const CoreShareTrend late = core_share_trend(t, m, e, p.t_max / 10, p.t_max);
+    md << "| " << c.plan->name << " | " << share_cell(early.from, early.from_sem) << " | "
+       << share_cell(late.from, late.from_sem) << " | " << share_cell(late.to, late.to_sem)
+       << " | " << trend_cell(early) << " | " << trend_cell(late) << " |\n";
+  }
+  return md.str();
+}
+
+// The kinetic pressure profile at the last snapshot of the cases that measured it.
+std::string pressure_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "### The kinetic pressure behind the front\n\n"
+        "p(rho) = (1 / (d V_shell)) sum |v - u(rho)|^2 at the last snapshot, in shells of rho / "
+        "R_front of width 1.5 / bins (0.025 at the default 60; simulation units, mean +- standard error over realisations; the "
+        "hard-core collisional part left out, Definitions). A pressure-driven snowplow has a "
+        "core pressure comparable to the band's; a momentum-conserving one a core near 0.\n\n"
+        "| case | t | p(0.25) | p(0.5) | p(0.75) | p(0.9) | p(1.0) |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    const auto& p = c.plan->spec.physics;
+    if (p.elastic() || c.plan->delta_scan || c.sums.snapshots().empty()) continue;
+    const auto& last = c.sums.snapshots().back();
+    if (last.pressure.count() == 0) continue;
+    const Binning b = pressure_binning(c.plan->spec);
+    const std::vector<double> mean = last.pressure.mean(), sem = last.pressure.standard_error();
+    md << "| " << c.plan->name << " | " << figure_number(last.t);
+    for (double x : {0.25, 0.5, 0.75, 0.9, 1.0}) {
+      const auto k = std::min(mean.size() - 1, std::size_t((x - b.lo) / (b.hi - b.lo) * b.bins));
+      md << " | " << figure_number(mean[k], 3) << " +- " << figure_number(sem[k], 2);
+    }
+    md << " |\n";
+  }
+  return md.str();
+}
+
 std::string plateau_markdown(const std::vector<CaseResult>& results) {
   std::ostringstream md;
   md << "### Plateaus and their drift\n\n"
@@ -396,7 +467,9 @@ void write_figures_report(const std::filesystem::path& dir, const FiguresRun& ru
      << energy_phi1_markdown(crossovers) << "\n"
      << phi1_limit_markdown(crossovers) << "\n"
      << inner_edge_markdown(results) << "\n"
-     << snowplow_markdown(results) << "\n## Definitions\n\n"
+     << snowplow_markdown(results) << "\n"
+     << core_share_markdown(results) << "\n"
+     << pressure_markdown(results) << "\n## Definitions\n\n"
      << definitions_markdown() << "\n## Notes\n\n"
      << crossover_notes(results);
   for (const auto& p : problems) md << "- problem: " << p << "\n";
