@@ -21,11 +21,12 @@ namespace gs {
 inline constexpr std::array<const char*, 7> kCurveColumns = {
     "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius", "radial_momentum"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
-inline constexpr std::array<const char*, 14> kSnapshotScalars = {
+inline constexpr std::array<const char*, 17> kSnapshotScalars = {
     "packing_typical",      "packing_upper",      "packing_mean",       "inner_correlation",
     "inner_outer_ratio",    "inner_speed",        "outer_speed",        "R_outside_fraction",
     "v_outside_fraction",   "front_radius",       "shell_peak_density", "packing_densest_cell",
-    "packing_local_median", "packing_local_upper"};
+    "packing_local_median", "packing_local_upper", "packing_cell5",     "packing_cell20",
+    "packing_voronoi_median"};
 
 class EnsembleSums {
  public:

@@ -13,6 +13,7 @@
 #include "analysis/realisation_in_flight.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/format.h"
 #include "sim/recorder.h"
 #include "sim/stop.h"
@@ -95,7 +96,24 @@ const std::vector<std::string> kScalarColumns = {"t",
                                                  "shell_peak_density",
                                                  "packing_densest_cell",
                                                  "packing_local_median",
-                                                 "packing_local_upper"};
+                                                 "packing_local_upper",
+                                                 "packing_cell5",
+                                                 "packing_cell20",
+                                                 "packing_voronoi_median"};
+
+// One line naming the folder when it was written with other columns (kRealisationFormat).
+void check_format(const std::vector<RealisationFile>& files, const std::filesystem::path& dir) {
+  const std::string want = std::string(kRealisationFormat) + "\n";
+  for (const auto& f : files)
+    if (f.name == kRealisationFiles[3]) {
+      if (f.text == want) return;
+      throw UserError(dir.string() + ": realisation of another format ('" +
+                      escaped(f.text.substr(0, f.text.find('\n'))) + "', this build reads '" +
+                      kRealisationFormat + "'); remove it to run it again");
+    }
+  throw UserError(dir.string() + ": realisation of an older grainshock (no format file; this build " +
+                  "reads '" + kRealisationFormat + "'); remove it to run it again");
+}
 
 std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -457,12 +475,16 @@ std::vector<RealisationFile> realisation_files(const Realisation& r) {
                                      m.measures.front.peak_density,
                                      m.measures.densest_cell,
                                      m.measures.local_median,
-                                     m.measures.local_upper};
+                                     m.measures.local_upper,
+                                     m.measures.cell_small,
+                                     m.measures.cell_large,
+                                     m.measures.voronoi_median};
     scalars.add_row(row);
   }
   return {{kRealisationFiles[0], to_csv(r.timeseries)},
           {kRealisationFiles[1], to_csv(dist)},
-          {kRealisationFiles[2], to_csv(scalars)}};
+          {kRealisationFiles[2], to_csv(scalars)},
+          {kRealisationFiles[3], std::string(kRealisationFormat) + "\n"}};
 }
 
 Realisation parse_realisation(const std::vector<RealisationFile>& files, std::uint64_t index,
@@ -472,6 +494,7 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
       if (f.name == name) return parse_csv(f.text, (dir / name).string());
     throw UserError((dir / name).string() + ": missing");
   };
+  check_format(files, dir);
   Realisation r;
   r.index = index;
   r.timeseries = table(kRealisationFiles[0]);
@@ -522,6 +545,9 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
     m.measures.densest_cell = s("packing_densest_cell");
     m.measures.local_median = s("packing_local_median");
     m.measures.local_upper = s("packing_local_upper");
+    m.measures.cell_small = s("packing_cell5");
+    m.measures.cell_large = s("packing_cell20");
+    m.measures.voronoi_median = s("packing_voronoi_median");
     r.snapshots.push_back(std::move(m));
     first += bins;
   }
@@ -566,7 +592,12 @@ std::filesystem::path temporary_realisation(const std::filesystem::path& dir) {
 
 Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index) {
   std::vector<RealisationFile> files;
-  for (const char* name : kRealisationFiles) files.push_back({name, read_text(dir / name)});
+  for (const char* name : kRealisationFiles) {
+    // A folder of a build before the format file: refused by check_format, not "cannot read".
+    if (std::string_view(name) == kRealisationFiles[3] && !std::filesystem::exists(dir / name))
+      continue;
+    files.push_back({name, read_text(dir / name)});
+  }
   return parse_realisation(files, index, dir);
 }
 

@@ -116,9 +116,13 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
                           const InFlightOptions& in_flight = {});
 
 // Folder layout: timeseries.csv, distributions.csv (one row per snapshot time and bin),
-// snapshot_scalars.csv (one row per snapshot time).
-inline constexpr std::array<const char*, 3> kRealisationFiles = {
-    "timeseries.csv", "distributions.csv", "snapshot_scalars.csv"};
+// snapshot_scalars.csv (one row per snapshot time), format (kRealisationFormat and a newline).
+inline constexpr std::array<const char*, 4> kRealisationFiles = {
+    "timeseries.csv", "distributions.csv", "snapshot_scalars.csv", "format"};
+// What the folder's columns mean, raised whenever they change, so that a folder of another
+// build is refused in one line instead of read with columns missing or meaning something else.
+// 2: the packing scan (cells of 5 and 20, Voronoi median); 1 (no format file): before it.
+inline constexpr const char* kRealisationFormat = "grainshock realisation 2";
 struct RealisationFile {
   std::string name, text;
 };
