@@ -84,6 +84,8 @@ struct CaseContext {
   bool collapse = false;
   // A 3D elastic case beside a larger one of the same physics: its exponents are sensitivity.
   bool superseded = false;
+  // A case run for the band packing at the paper's delta alone: only its packing rows.
+  bool packing_only = false;
 };
 
 // The comparisons of one ensemble (exponents, identities, A, band measures, shock jump, Q).
