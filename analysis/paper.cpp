@@ -19,7 +19,6 @@ namespace {
 // The paper's values, with their own uncertainty (Comparison::sigma_paper).
 constexpr double kPackingInelastic = 0.80;  // "ranges from 0.78-0.82 in two dimensions", r < 1
 constexpr double kPackingInelasticSigma = 0.01;  // the range read as a 95% interval
-constexpr double kPaperCutoff = 1e-4;  // "In our simulation, we set delta = 10^-4"
 constexpr double kPackingElastic = 0.47;  // "For r = 1, the packing fraction is ~0.47"
 const double kPackingElasticSigma = 0.005 / std::sqrt(3.0);  // rounding of its last digit
 constexpr double kPhi1[2] = {2.25, 3.0};  // "phi1 ~ 2.25 in two dimensions and ~3.0 in three"

@@ -23,6 +23,8 @@ namespace gs {
 inline constexpr double kFig1aPaperTimes[] = {5000, 10000, 20000, 50000};
 inline constexpr double kFig1bPaperTime = 25000;
 inline constexpr std::int64_t kFig1Particles = 250000;
+// The paper's cutoff velocity: "In our simulation, we set delta = 10^-4".
+inline constexpr double kPaperCutoff = 1e-4;
 
 // How a measured number is set against the paper's or the theory's.
 enum class Relation {
