@@ -502,7 +502,8 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
       plot += std::string(plot.empty() ? "plot " : ", \\\n     ") +
               "'fig9_packing.csv' skip 1 using ($1==" + rtext(r) +
               " ? $2 : 1/0):3 with steps lw 2 title sprintf('r = " + rtext(r) +
-              ": local 90%% %.2f, densest cell %.2f', " +
+              ": Voronoi median %.2f, local 90%% %.2f, densest cell %.2f', " +
+              format_double(c->fits.last_scalar("packing_voronoi_median")) + ", " +
               format_double(c->fits.last_scalar("packing_local_upper")) + ", " +
               format_double(c->fits.last_scalar("packing_densest_cell")) + ")";
     }
