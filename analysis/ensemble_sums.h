@@ -18,8 +18,10 @@ namespace gs {
 
 // The time-series columns kept per realisation for bootstrapping local slopes and fits, in the
 // order of EnsembleSums::Curves.
-inline constexpr std::array<const char*, 7> kCurveColumns = {
-    "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius", "radial_momentum"};
+inline constexpr std::array<const char*, 10> kCurveColumns = {
+    "active",          "energy",       "radius_rms",   "speed_rms",
+    "collisions",      "front_radius", "radial_momentum", "kicked_displacement",
+    "kicked_speed",    "kicked_collisions"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
 inline constexpr std::array<const char*, 17> kSnapshotScalars = {
     "packing_typical",      "packing_upper",      "packing_mean",       "inner_correlation",

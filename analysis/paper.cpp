@@ -101,6 +101,10 @@ std::vector<Comparison> exponent_rows(const Comparison& base, const EnsembleFits
     x.sigma_stat = fit_sigma(e.fit);
     x.sigma_sys = e.window_systematic;
     x.theory = e.theory;
+    if (is_kicked(e.kind)) {
+      x.quantity = "exponent of " + e.quantity + " (the kicked particle)";
+      x.role = Role::Reported;  // not the paper's claim
+    }
     if (e.kind == Quantity::RadialMomentum) {
       x.role = Role::Reported;
       x.source += "; P_r ~ N_t R_t / t, constant in a momentum-conserving snowplow";

@@ -336,6 +336,15 @@ void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64
   row.push_back(isotropic_anisotropy(act, rng));
 }
 
+// The kicked particle's columns (kAddedColumns), appended to `row`.
+void add_kicked_columns(const Simulation& sim, std::vector<double>& row) {
+  const KickedParticle k = sim.kicked_particle();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  row.push_back(k.known ? k.displacement.norm() : nan);
+  row.push_back(k.known ? k.speed : nan);
+  row.push_back(k.known ? double(k.collisions) : nan);
+}
+
 }  // namespace
 
 Realisation empty_realisation(const Recorder& recorder, std::uint64_t index) {
@@ -419,6 +428,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
     }
     row.push_back(front);
     add_band_columns(*sim, c, index, k, row[active_column], act, row);
+    add_kicked_columns(*sim, row);
     out.timeseries.add_row(row);
     if (next_snap < spec.snapshot_times.size() &&
         std::abs(spec.snapshot_times[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {

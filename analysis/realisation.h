@@ -74,9 +74,12 @@ inline constexpr double kFrontMinActive = 50;
 // The columns a realisation adds to the Recorder's, from the active particles at each sample
 // with N_t >= kFrontMinActive (NaN before): the front radius (analysis/band_measures.h), the
 // radial momentum P_r and A of the same particles with their directions redrawn, the finite-N
-// floor of an isotropic cloud (sim/observables.h).
-inline constexpr std::array<const char*, 3> kAddedColumns = {"front_radius", "radial_momentum",
-                                                             "anisotropy_isotropic"};
+// floor of an isotropic cloud (sim/observables.h); then, at every sample, the kicked particle's
+// distance from where it started, its speed and its collisions (sim/engine.h KickedParticle;
+// NaN where it is not known: 1D, the unbounded medium).
+inline constexpr std::array<const char*, 6> kAddedColumns = {
+    "front_radius",        "radial_momentum", "anisotropy_isotropic",
+    "kicked_displacement", "kicked_speed",    "kicked_collisions"};
 
 struct Realisation {
   std::uint64_t index = 0;
@@ -121,7 +124,8 @@ inline constexpr std::array<const char*, 4> kRealisationFiles = {
     "timeseries.csv", "distributions.csv", "snapshot_scalars.csv", "format"};
 // What the folder's columns mean, raised whenever they change, so that a folder of another
 // build is refused in one line instead of read with columns missing or meaning something else.
-// 2: the packing scan (cells of 5 and 20, Voronoi median); 1 (no format file): before it.
+// 2: the packing scan (cells of 5 and 20, Voronoi median) and the kicked particle's columns;
+// 1 (no format file): before them.
 inline constexpr const char* kRealisationFormat = "grainshock realisation 2";
 struct RealisationFile {
   std::string name, text;

@@ -307,11 +307,14 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       t_start = ts.column("t")[i];
       break;
     }
-  std::string gp = gnuplot_preamble(base, 1900, 900);
+  // Four panels a row: 7 quantities, 10 with the kicked particle's (elastic blasts in a box).
+  const int rows = int(f.exponents.size() + 3) / 4;
+  std::string gp = gnuplot_preamble(base, 1900, 450 * rows);
   gp +=
       "set xrange [" + format_double(t_start) + ":" + format_double(ts.column("t").back()) + "]\n";
   gp +=
-      "set multiplot layout 2,4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
+      "set multiplot layout " + std::to_string(rows) +
+      ",4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
       " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
       "set logscale x\nset format x '10^{%L}'\nset xlabel 't (simulation units)'\n"

@@ -160,7 +160,8 @@ EnsembleFits fits_at_theory(const PhysicsConfig& p) {
   f.alpha_theory = theory_alpha(p);
   const Quantity all[] = {Quantity::ActiveCount, Quantity::Energy,         Quantity::RadiusRms,
                           Quantity::FrontRadius, Quantity::RadialMomentum, Quantity::RadialSpeed,
-                          Quantity::Collisions};
+                          Quantity::Collisions,  Quantity::KickedDisplacement,
+                          Quantity::KickedSpeed, Quantity::KickedCollisions};
   for (Quantity q : all) {
     ExponentFit e;
     e.kind = q;
@@ -169,6 +170,7 @@ EnsembleFits fits_at_theory(const PhysicsConfig& p) {
                    ? (p.elastic() ? 2.0 * (p.dim + 1) / (p.dim + 2) : std::nan(""))
                    : exponent_from_alpha(q, p.dim, f.alpha_theory);
     if (q == Quantity::Energy && p.elastic()) e.theory = 0;
+    if (is_kicked(q)) e.theory = p.elastic() ? impurity_exponent(q, p.dim) : std::nan("");
     e.fit.exponent = std::isfinite(e.theory) ? e.theory : 1.5;
     e.fit.confidence = 0.95;
     e.fit.ci_lo = e.fit.exponent - 0.002 * 1.959964;
@@ -271,6 +273,31 @@ TEST(Verdicts, BandPackingIsCountedOnTheVoronoiMedianAtThePapersDelta) {
   EXPECT_EQ(row(cmp, "band packing (Voronoi, median)").role, Role::Sensitivity);
   EXPECT_NE(row(cmp, "band packing (Voronoi, median)").note.find("not the paper's 1e-4"),
             std::string::npos);
+}
+
+TEST(ImpurityExponents, AreKumarDharKrapivskysIn2DAnd3D) {
+  // Their abstract: "In 2D, the predictions for impurity displacement, collision numbers, and
+  // speed are t^(2/5), t^(2/5) and t^(-2/5)"; 3D from their formulas: 2/5 x 31/35, 2/5 x 26/35
+  // and -3 x 29 / (5 x 35).
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedDisplacement, 2), 0.4, 1e-15);
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedCollisions, 2), 0.4, 1e-15);
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedSpeed, 2), -0.4, 1e-15);
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedDisplacement, 3), 62.0 / 175, 1e-15);
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedCollisions, 3), 52.0 / 175, 1e-15);
+  EXPECT_NEAR(impurity_exponent(Quantity::KickedSpeed, 3), -87.0 / 175, 1e-15);
+  EXPECT_TRUE(std::isnan(impurity_exponent(Quantity::RadiusRms, 2)));
+  // Their rows are reported with a z, not counted, and fail when off by 10 sigma.
+  const EnsembleSpec spec = spec_of(2, 1.0);
+  EnsembleFits f = fits_at_theory(spec.physics);
+  const Comparison& x = row(case_comparisons({"d2_r1", "", false, false}, spec, f),
+                            "exponent of x_kick (the kicked particle)");
+  EXPECT_EQ(x.role, Role::Reported);
+  EXPECT_NEAR(x.theory, 0.4, 1e-15);
+  EXPECT_TRUE(x.agrees());
+  for (auto& e : f.exponents) e.fit.exponent += 0.02;
+  EXPECT_FALSE(row(case_comparisons({"d2_r1", "", false, false}, spec, f),
+                   "exponent of v_kick (the kicked particle)")
+                   .agrees());
 }
 
 TEST(Verdicts, IdentitiesTheShockJump3DAnisotropyAndPrAreNotCounted) {
