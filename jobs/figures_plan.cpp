@@ -219,6 +219,10 @@ std::vector<LimitCase> snowplow_cases(FiguresMode m) {
 // --full; --quick half the time in 1e5 discs (r = 0.8 reaches 176 of L/2 = 316 by 1e5 there).
 // Measured at the --full size (4 realisations, one thread, loaded machine): 3.7 s a realisation
 // for r = 0.1 and 7.4 s for r = 0.8 with every snapshot's measures, ~250 CPU-s for the three.
+// Their Voronoi median at t = 1.25e4, 2.5e4, 5e4, 1e5: r = 0.1 0.653, 0.688, 0.700, 0.688
+// (+- 0.002-0.006, settled); r = 0.8 0.487, 0.615, 0.708, 0.730 (still rising). At the paper
+// cases' 1e-5, r = 0.1 reaches 0.766 at 1e5 and 0.781 at 2e5, still rising: the band compacts
+// further where fewer collisions are made elastic.
 struct PackingRun {
   std::int64_t particles;
   double t_max;
