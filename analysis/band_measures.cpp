@@ -67,65 +67,151 @@ double densest_shifted_cell(const Snapshot& s, int d, const BandMeasureOptions& 
   return best;
 }
 
-// Local packing within radius a of each active particle, from a periodic cell list of side >= a.
-std::vector<double> local_packing(const Snapshot& s, int d, double a) {
-  const double box = s.info.cube_side();
-  const auto n = std::max<std::int64_t>(1, std::int64_t(std::floor(box / a)));
-  const double side = box / double(n);
-  const std::size_t cells = std::size_t(std::pow(double(n), d));
-  std::vector<std::array<std::int64_t, 3>> cell_of(s.size());
-  std::vector<std::uint32_t> start(cells + 1, 0), order(s.size());
-  auto key_of = [&](const std::array<std::int64_t, 3>& c) {
+// Particles sorted into a periodic grid of cells of side >= reach, to find every particle within
+// `reach` of one (minimum image) from its cell's 3^d stencil.
+class PeriodicCells {
+ public:
+  PeriodicCells(const Snapshot& s, int d, double reach) : s_(s), d_(d), box_(s.info.cube_side()) {
+    n_ = std::max<std::int64_t>(1, std::int64_t(std::floor(box_ / reach)));
+    const double side = box_ / double(n_);
+    const std::size_t cells = std::size_t(std::pow(double(n_), d));
+    cell_of_.resize(s.size());
+    start_.assign(cells + 1, 0);
+    order_.resize(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      std::array<std::int64_t, 3> c{0, 0, 0};
+      for (int k = 0; k < d; ++k)
+        c[k] = std::min(n_ - 1, std::int64_t(std::floor(wrap(s.position[i][k], box_) / side)));
+      cell_of_[i] = c;
+      ++start_[key_of(c) + 1];
+    }
+    for (std::size_t k = 0; k < cells; ++k) start_[k + 1] += start_[k];
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      order_[fill[key_of(cell_of_[i])]++] = std::uint32_t(i);
+  }
+
+  // f(j, dx): every particle j of the stencil of i's cell (i itself included), dx = x_j - x_i
+  // by the minimum image.
+  template <class F>
+  void near(std::size_t i, F&& f) const {
+    const int reach = n_ >= 3 ? 1 : 0;  // a box of fewer than 3 cells: every cell is a neighbour
+    const int span = n_ >= 3 ? 3 : int(n_);
+    const int combos = int(std::pow(span, d_));
+    for (int c = 0; c < combos; ++c) {
+      std::array<std::int64_t, 3> nb{0, 0, 0};
+      for (int k = 0, m = c; k < d_; ++k, m /= span) {
+        const std::int64_t j = n_ >= 3 ? cell_of_[i][k] + (m % span) - reach : (m % span);
+        nb[k] = ((j % n_) + n_) % n_;
+      }
+      const std::size_t key = key_of(nb);
+      for (std::uint32_t q = start_[key]; q < start_[key + 1]; ++q) {
+        const std::size_t j = order_[q];
+        Eigen::Vector3d dx = Eigen::Vector3d::Zero();
+        for (int k = 0; k < d_; ++k) {
+          double x = wrap(s_.position[j][k], box_) - wrap(s_.position[i][k], box_);
+          dx[k] = x - box_ * std::round(x / box_);
+        }
+        f(j, dx);
+      }
+    }
+  }
+
+ private:
+  std::size_t key_of(const std::array<std::int64_t, 3>& c) const {
     std::size_t key = 0;
-    for (int k = d - 1; k >= 0; --k) key = key * std::size_t(n) + std::size_t(c[k]);
+    for (int k = d_ - 1; k >= 0; --k) key = key * std::size_t(n_) + std::size_t(c[k]);
     return key;
-  };
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int k = 0; k < d; ++k)
-      c[k] = std::min(n - 1, std::int64_t(std::floor(wrap(s.position[i][k], box) / side)));
-    cell_of[i] = c;
-    ++start[key_of(c) + 1];
   }
-  for (std::size_t k = 0; k < cells; ++k) start[k + 1] += start[k];
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < s.size(); ++i) order[fill[key_of(cell_of[i])]++] = std::uint32_t(i);
-  }
-  const int reach = n >= 3 ? 1 : 0;  // a box of fewer than 3 cells: every cell is a neighbour
-  const int span = n >= 3 ? 3 : int(n);
+  const Snapshot& s_;
+  int d_;
+  double box_;
+  std::int64_t n_ = 1;
+  std::vector<std::array<std::int64_t, 3>> cell_of_;
+  std::vector<std::uint32_t> start_, order_;
+};
+
+// Local packing within radius a of each active particle.
+std::vector<double> local_packing(const Snapshot& s, int d, double a) {
+  const PeriodicCells cells(s, d, a);
   std::vector<double> out;
   const double ball_volume = ball(d, a);
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (!active_at(s, i)) continue;
     double filled = 0;
-    const int combos = int(std::pow(span, d));
-    for (int c = 0; c < combos; ++c) {
-      std::array<std::int64_t, 3> nb{0, 0, 0};
-      for (int k = 0, m = c; k < d; ++k, m /= span) {
-        const std::int64_t j = n >= 3 ? cell_of[i][k] + (m % span) - reach : (m % span);
-        nb[k] = ((j % n) + n) % n;
-      }
-      const std::size_t key = key_of(nb);
-      for (std::uint32_t q = start[key]; q < start[key + 1]; ++q) {
-        const std::size_t j = order[q];
-        double r2 = 0;
-        for (int k = 0; k < d; ++k) {
-          double dx = wrap(s.position[j][k], box) - wrap(s.position[i][k], box);
-          dx -= box * std::round(dx / box);
-          r2 += dx * dx;
-        }
-        if (r2 <= a * a) filled += particle_volume(s, j, d);
-      }
-    }
+    cells.near(i, [&](std::size_t j, const Eigen::Vector3d& dx) {
+      if (dx.squaredNorm() <= a * a) filled += particle_volume(s, j, d);
+    });
     out.push_back(filled / ball_volume);
   }
   return out;
 }
 
+using Polygon = std::vector<Eigen::Vector2d>;
+
+// Keeps the part of `poly` (convex, counter-clockwise) on the side of the bisector of 0 and q
+// that holds 0: x . q <= |q|^2 / 2 (Sutherland-Hodgman against one line).
+void clip_by_bisector(const Polygon& poly, const Eigen::Vector2d& q, Polygon& out) {
+  out.clear();
+  const double h = 0.5 * q.squaredNorm();
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Eigen::Vector2d& a = poly[k];
+    const Eigen::Vector2d& b = poly[(k + 1) % poly.size()];
+    const double fa = a.dot(q) - h, fb = b.dot(q) - h;
+    if (fa <= 0) out.push_back(a);
+    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) out.push_back(a + (b - a) * (fa / (fa - fb)));
+  }
+}
+
+double polygon_area(const Polygon& p) {
+  double twice = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto& a = p[k];
+    const auto& b = p[(k + 1) % p.size()];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
+}
+
+double farthest_vertex(const Polygon& p) {
+  double r2 = 0;
+  for (const auto& v : p) r2 = std::max(r2, v.squaredNorm());
+  return std::sqrt(r2);
+}
+
 }  // namespace
 
 double sphere_volume(int dim, double radius) { return ball(dim, radius); }
+std::vector<double> voronoi_packing(const Snapshot& s, double cap) {
+  if (s.info.dim != 2) throw UserError("Voronoi packing: dimension must be 2");
+  if (!(s.info.cube_side() > 0)) throw UserError("Voronoi packing needs a cubic periodic box");
+  GS_CHECK(cap > 0);
+  // A neighbour farther than twice the cap square's corner cannot cut it.
+  const double reach = 2 * std::sqrt(2.0) * cap;
+  const PeriodicCells cells(s, 2, reach);
+  std::vector<std::pair<double, Eigen::Vector2d>> nb;
+  Polygon cell, next;
+  std::vector<double> out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!active_at(s, i)) continue;
+    nb.clear();
+    cells.near(i, [&](std::size_t j, const Eigen::Vector3d& dx) {
+      const double r2 = dx.head<2>().squaredNorm();
+      if (j != i && r2 > 0 && r2 <= reach * reach) nb.emplace_back(r2, dx.head<2>());
+    });
+    std::sort(nb.begin(), nb.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    cell = {{-cap, -cap}, {cap, -cap}, {cap, cap}, {-cap, cap}};
+    double bound = 2 * farthest_vertex(cell);
+    for (const auto& [r2, q] : nb) {
+      if (r2 > bound * bound) break;  // sorted: no farther one cuts the cell either
+      clip_by_bisector(cell, q, next);
+      cell.swap(next);
+      bound = 2 * farthest_vertex(cell);
+    }
+    out.push_back(particle_volume(s, i, 2) / polygon_area(cell));
+  }
+  return out;
+}
 
 ShellFront shell_front(std::span<const double> distances, int dim, double ambient, double shell) {
   GS_CHECK(dim == 2 || dim == 3);
@@ -187,6 +273,12 @@ BandMeasures measure_band(const Snapshot& s, double ambient, const BandMeasureOp
   auto local = local_packing(s, d, o.local_radius);
   m.local_upper = quantile_of(local, o.local_quantile);
   m.local_median = quantile_of(local, 0.5);
+  if (d == 2) {
+    auto vor = voronoi_packing(s, o.voronoi_cap);
+    m.voronoi_median = quantile_of(vor, 0.5);
+  }
+  m.cell_small = band_packing(s, {.cell = o.small_cell}).typical;
+  m.cell_large = band_packing(s, {.cell = o.large_cell}).typical;
   return m;
 }
 

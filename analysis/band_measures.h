@@ -9,6 +9,10 @@
 //    of it, as whole-particle volume over the ball's volume (unbiased for a uniform medium; no
 //    edge of a grid, only the band's own edges for particles near them), its median and upper
 //    quantile over active particles;
+//  - the cell reading at other sides (5 and 20), whose trend with the side shows the band-edge
+//    dilution: the smaller the cell, the fewer straddle an edge, the higher the mean;
+//  - each active particle's own Voronoi cell (2D): its disc's area over the cell's, the median
+//    over active particles (the declared reading, docs/definitions.md);
 //  - the front radius and the shell's peak number density on shells of fixed width around the
 //    active centre of mass (not scaling with t^alpha, so that a radius read off them is not the
 //    theory's by construction): the front is where the active density, going outward from the
@@ -18,6 +22,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include "sim/histogram.h"
 #include "sim/snapshot.h"
@@ -30,6 +35,11 @@ struct BandMeasureOptions {
   double local_radius = 3;  // diameters
   double local_quantile = 0.9;
   double shell = 2;  // width of the shells of the front radius, diameters
+  double small_cell = 5, large_cell = 20;  // the cell scan beside the paper's 10
+  // Half side of the square a Voronoi cell is clipped to: a particle on the band's inner edge,
+  // facing the near-empty core, has a cell bounded by this instead of by the core's few
+  // particles. Inside a band (neighbours ~1 apart) the cell reaches ~0.6 and never meets it.
+  double voronoi_cap = 2;
 };
 
 // The volume (area in 2D) of the ball of `radius` in dim = 2 or 3 dimensions.
@@ -59,12 +69,24 @@ struct BandMeasures {
   double densest_cell = std::numeric_limits<double>::quiet_NaN();
   double local_median = std::numeric_limits<double>::quiet_NaN();
   double local_upper = std::numeric_limits<double>::quiet_NaN();  // options.local_quantile
+  // Active-weighted mean cell packing (BandPacking::typical) at cells of small_cell, large_cell.
+  double cell_small = std::numeric_limits<double>::quiet_NaN();
+  double cell_large = std::numeric_limits<double>::quiet_NaN();
+  double voronoi_median = std::numeric_limits<double>::quiet_NaN();  // 2D only
   ShellFront front;
 };
 
 // `ambient_density`: number density of the gas at rest. Needs a cubic periodic box (info.cube_side() > 0).
 BandMeasures measure_band(const Snapshot& s, double ambient_density,
                           const BandMeasureOptions& options = {});
+
+// Each active particle's disc area over the area of its Voronoi cell among all particles (active
+// or at rest; minimum image in the cubic periodic box), the cell clipped to the square of half
+// side `cap` around the particle; in the order of the active particles. 2D only (UserError
+// otherwise, or without a cubic box). Written for this: half-plane clipping by the bisectors of
+// neighbours in order of distance, stopped when the next is beyond twice the cell's farthest
+// vertex (no farther one can cut it).
+std::vector<double> voronoi_packing(const Snapshot& s, double cap);
 
 // The cell packing fractions as an active-weighted distribution: each cell counts with the number
 // of active particles in it (fractions and weights from sim/observables.h BandPacking).

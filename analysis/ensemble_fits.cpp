@@ -41,8 +41,26 @@ const char* quantity_name(Quantity q) {
     case Quantity::RadialMomentum: return "P_r";
     case Quantity::RadialSpeed: return "P_r/N_t";
     case Quantity::Collisions: return "C_t";
+    case Quantity::KickedDisplacement: return "x_kick";
+    case Quantity::KickedSpeed: return "v_kick";
+    case Quantity::KickedCollisions: return "C_kick";
   }
   return "?";
+}
+
+bool is_kicked(Quantity q) {
+  return q == Quantity::KickedDisplacement || q == Quantity::KickedSpeed ||
+         q == Quantity::KickedCollisions;
+}
+
+double impurity_exponent(Quantity q, int d) {
+  const double d2 = double(d) * d, radius = 2.0 / (d + 2), den = 8 + 3 * d2;
+  switch (q) {
+    case Quantity::KickedDisplacement: return radius * (4 + 3 * d2) / den;
+    case Quantity::KickedCollisions: return radius * (8 + 2 * d2) / den;
+    case Quantity::KickedSpeed: return -d * (8 - 2 * d + 3 * d2) / ((2 + d) * den);
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 double exponent_from_alpha(Quantity q, int d, double a) {
@@ -53,7 +71,10 @@ double exponent_from_alpha(Quantity q, int d, double a) {
     case Quantity::FrontRadius: return a;
     case Quantity::RadialMomentum: return a * (d + 1) - 1;
     case Quantity::RadialSpeed: return a - 1;
-    case Quantity::Collisions: break;
+    case Quantity::Collisions:
+    case Quantity::KickedDisplacement:
+    case Quantity::KickedSpeed:
+    case Quantity::KickedCollisions: break;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -66,7 +87,10 @@ double alpha_from_exponent(Quantity q, int d, double x) {
     case Quantity::FrontRadius: return x;
     case Quantity::RadialMomentum: return (x + 1) / (d + 1);
     case Quantity::RadialSpeed: return x + 1;
-    case Quantity::Collisions: break;
+    case Quantity::Collisions:
+    case Quantity::KickedDisplacement:
+    case Quantity::KickedSpeed:
+    case Quantity::KickedCollisions: break;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -128,6 +152,16 @@ std::vector<QuantityPlan> quantities_of(const PhysicsConfig& p, double a) {
                  elastic ? 2.0 * (d + 1) / (d + 2) : std::numeric_limits<double>::quiet_NaN(),
                  elastic ? "Antal, Krapivsky, Redner 2008: collisions ~ t^(2(d+1)/(d+2))" : "",
                  5});
+  // The kicked particle, where it is known (a box): its theory is the elastic blast's.
+  const std::pair<Quantity, std::size_t> kicked[] = {{Quantity::KickedDisplacement, 7},
+                                                     {Quantity::KickedSpeed, 8},
+                                                     {Quantity::KickedCollisions, 9}};
+  if (elastic && !p.unbounded())
+    for (const auto& [q, key] : kicked)
+      out.push_back({q, impurity_exponent(q, d),
+                     "Kumar, Dhar, Krapivsky, arXiv:2505.02225 (2025): the kicked 'impurity' of "
+                     "a hard-sphere blast",
+                     key});
   return out;
 }
 
@@ -148,6 +182,9 @@ const char* column_of(Quantity q) {
     case Quantity::RadialMomentum: return "radial_momentum";
     case Quantity::RadialSpeed: return "radial_speed";
     case Quantity::Collisions: return "collisions";
+    case Quantity::KickedDisplacement: return "kicked_displacement";
+    case Quantity::KickedSpeed: return "kicked_speed";
+    case Quantity::KickedCollisions: return "kicked_collisions";
   }
   return "";
 }

@@ -48,9 +48,18 @@ void check_window(const EnsembleSpec& spec, const Window& w);
 
 // The fitted quantities.
 enum class Quantity { ActiveCount, Energy, RadiusRms, FrontRadius, RadialMomentum, RadialSpeed,
-                      Collisions };
-// N_t, E_t, R_t, R_front, P_r, P_r/N_t, C_t.
+                      Collisions, KickedDisplacement, KickedSpeed, KickedCollisions };
+// N_t, E_t, R_t, R_front, P_r, P_r/N_t, C_t, and the kicked particle's displacement, speed and
+// collision count: x_kick, v_kick, C_kick.
 const char* quantity_name(Quantity q);
+bool is_kicked(Quantity q);
+
+// The exponents of the kicked particle ("impurity") in the elastic blast by Kumar, Dhar and
+// Krapivsky, "Impurity dynamics in a zero-temperature gas", arXiv:2505.02225 (2025), with
+// R ~ t^(2/(d+2)): displacement lambda (R/lambda)^((4+3d^2)/(8+3d^2)), collisions
+// (R/lambda)^((8+2d^2)/(8+3d^2)), speed t^(-d(8-2d+3d^2)/((2+d)(8+3d^2))); in 2D 2/5, 2/5 and
+// -2/5 as their abstract states. NaN for the other quantities.
+double impurity_exponent(Quantity q, int d);
 
 struct ExponentFit {
   std::string column;  // a kCurveColumns name, or "radial_speed" (P_r / N_t per realisation)

@@ -64,7 +64,10 @@ void EnsembleSums::add(const Realisation& r, const std::string& source) {
                                                            m.measures.front.peak_density,
                                                            m.measures.densest_cell,
                                                            m.measures.local_median,
-                                                           m.measures.local_upper};
+                                                           m.measures.local_upper,
+                                                           m.measures.cell_small,
+                                                           m.measures.cell_large,
+                                                           m.measures.voronoi_median};
     s.scalars.add(v);
     if (!m.pressure.empty()) {
       if (s.pressure.count() == 0) s.pressure = MeanAccumulator(m.pressure.size());

@@ -18,14 +18,17 @@ namespace gs {
 
 // The time-series columns kept per realisation for bootstrapping local slopes and fits, in the
 // order of EnsembleSums::Curves.
-inline constexpr std::array<const char*, 7> kCurveColumns = {
-    "active", "energy", "radius_rms", "speed_rms", "collisions", "front_radius", "radial_momentum"};
+inline constexpr std::array<const char*, 10> kCurveColumns = {
+    "active",          "energy",       "radius_rms",   "speed_rms",
+    "collisions",      "front_radius", "radial_momentum", "kicked_displacement",
+    "kicked_speed",    "kicked_collisions"};
 // The per-snapshot scalars averaged over realisations (names of snapshot_scalars.csv).
-inline constexpr std::array<const char*, 14> kSnapshotScalars = {
+inline constexpr std::array<const char*, 17> kSnapshotScalars = {
     "packing_typical",      "packing_upper",      "packing_mean",       "inner_correlation",
     "inner_outer_ratio",    "inner_speed",        "outer_speed",        "R_outside_fraction",
     "v_outside_fraction",   "front_radius",       "shell_peak_density", "packing_densest_cell",
-    "packing_local_median", "packing_local_upper"};
+    "packing_local_median", "packing_local_upper", "packing_cell5",     "packing_cell20",
+    "packing_voronoi_median"};
 
 class EnsembleSums {
  public:

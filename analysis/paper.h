@@ -26,6 +26,8 @@ inline constexpr std::int64_t kFig1Particles = 250000;
 // The times of the paper's scaling collapses (r = 0.1) in its time unit: Fig. 4 (2D), Fig. 5 (3D).
 inline constexpr double kFig4PaperTimes[] = {25000, 37500, 50000};
 inline constexpr double kFig5PaperTimes[] = {30000, 50000, 75000};
+// The paper's cutoff velocity: "In our simulation, we set delta = 10^-4".
+inline constexpr double kPaperCutoff = 1e-4;
 
 // How a measured number is set against the paper's or the theory's.
 enum class Relation {
@@ -87,6 +89,8 @@ struct CaseContext {
   bool collapse = false;
   // A 3D elastic case beside a larger one of the same physics: its exponents are sensitivity.
   bool superseded = false;
+  // A case run for the band packing at the paper's delta alone: only its packing rows.
+  bool packing_only = false;
 };
 
 // The comparisons of one ensemble (exponents, identities, A, band measures, shock jump, Q).

@@ -14,6 +14,7 @@
 #include "analysis/realisation_in_flight.h"
 #include "sim/engine.h"
 #include "sim/error.h"
+#include "sim/escaped.h"
 #include "sim/format.h"
 #include "sim/recorder.h"
 #include "sim/stop.h"
@@ -97,7 +98,24 @@ const std::vector<std::string> kScalarColumns = {"t",
                                                  "shell_peak_density",
                                                  "packing_densest_cell",
                                                  "packing_local_median",
-                                                 "packing_local_upper"};
+                                                 "packing_local_upper",
+                                                 "packing_cell5",
+                                                 "packing_cell20",
+                                                 "packing_voronoi_median"};
+
+// One line naming the folder when it was written with other columns (kRealisationFormat).
+void check_format(const std::vector<RealisationFile>& files, const std::filesystem::path& dir) {
+  const std::string want = std::string(kRealisationFormat) + "\n";
+  for (const auto& f : files)
+    if (f.name == kRealisationFiles[3]) {
+      if (f.text == want) return;
+      throw UserError(dir.string() + ": realisation of another format ('" +
+                      escaped(f.text.substr(0, f.text.find('\n'))) + "', this build reads '" +
+                      kRealisationFormat + "'); remove it to run it again");
+    }
+  throw UserError(dir.string() + ": realisation of an older grainshock (no format file; this build " +
+                  "reads '" + kRealisationFormat + "'); remove it to run it again");
+}
 
 std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -318,7 +336,7 @@ void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64
                       std::size_t k, double active, Snapshot& act, std::vector<double>& row) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (active < kFrontMinActive) {
-    row.insert(row.end(), kAddedColumns.size() - 1, nan);
+    row.insert(row.end(), 3, nan);  // P_r, A's floor, the core's share
     return;
   }
   sim.active_snapshot(act);
@@ -326,6 +344,15 @@ void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64
   Rng rng(c.seed, index, Stream::Shuffle, std::array<std::int64_t, 1>{std::int64_t(k)});
   row.push_back(isotropic_anisotropy(act, rng));
   row.push_back(core_energy(act, c.density).share);
+}
+
+// The kicked particle's columns (kAddedColumns), appended to `row`.
+void add_kicked_columns(const Simulation& sim, std::vector<double>& row) {
+  const KickedParticle k = sim.kicked_particle();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  row.push_back(k.known ? k.displacement.norm() : nan);
+  row.push_back(k.known ? k.speed : nan);
+  row.push_back(k.known ? double(k.collisions) : nan);
 }
 
 }  // namespace
@@ -411,6 +438,7 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
     }
     row.push_back(front);
     add_band_columns(*sim, c, index, k, row[active_column], act, row);
+    add_kicked_columns(*sim, row);
     out.timeseries.add_row(row);
     if (next_snap < spec.snapshot_times.size() &&
         std::abs(spec.snapshot_times[next_snap] - t) <= 1e-12 * std::max(1.0, t)) {
@@ -469,12 +497,16 @@ std::vector<RealisationFile> realisation_files(const Realisation& r) {
                                      m.measures.front.peak_density,
                                      m.measures.densest_cell,
                                      m.measures.local_median,
-                                     m.measures.local_upper};
+                                     m.measures.local_upper,
+                                     m.measures.cell_small,
+                                     m.measures.cell_large,
+                                     m.measures.voronoi_median};
     scalars.add_row(row);
   }
   return {{kRealisationFiles[0], to_csv(r.timeseries)},
           {kRealisationFiles[1], to_csv(dist)},
-          {kRealisationFiles[2], to_csv(scalars)}};
+          {kRealisationFiles[2], to_csv(scalars)},
+          {kRealisationFiles[3], std::string(kRealisationFormat) + "\n"}};
 }
 
 Realisation parse_realisation(const std::vector<RealisationFile>& files, std::uint64_t index,
@@ -484,23 +516,21 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
       if (f.name == name) return parse_csv(f.text, (dir / name).string());
     throw UserError((dir / name).string() + ": missing");
   };
+  check_format(files, dir);
   Realisation r;
   r.index = index;
   r.timeseries = table(kRealisationFiles[0]);
-  // Folders and states in flight written before the core's share was measured: the column is
-  // added as NaN, so that they average with newer realisations (to NaN where one lacks it) and
-  // a state in flight goes on with the newer rows.
-  if (r.timeseries.has("anisotropy_isotropic") && !r.timeseries.has("core_energy_share"))
-    r.timeseries.add_column("core_energy_share",
-                            std::vector<double>(r.timeseries.rows(),
-                                                std::numeric_limits<double>::quiet_NaN()));
+  // One line naming the file when a column is missing (a folder edited or cut by hand: the
+  // format file says which columns a folder of this build has).
+  auto need = [&](const Table& t, const char* file, std::string_view column) {
+    if (!t.has(column))
+      throw UserError((dir / file).string() + ": no column '" + std::string(column) + "'");
+  };
+  for (const char* n : kAddedColumns) need(r.timeseries, kRealisationFiles[0], n);
   const Table dist = table(kRealisationFiles[1]);
   const Table sc = table(kRealisationFiles[2]);
-  // UserError if missing; the pressure came later, and older folders are read without it.
-  for (const auto& n : kDistributionColumns)
-    if (n != "pressure") (void)dist.column(n);
-  const bool has_pressure = dist.has("pressure");
-  for (const auto& n : kScalarColumns) (void)sc.column(n);
+  for (const auto& n : kDistributionColumns) need(dist, kRealisationFiles[1], n);
+  for (const auto& n : kScalarColumns) need(sc, kRealisationFiles[2], n);
   const auto& t = dist.column("t");
   std::size_t first = 0;
   for (std::size_t k = 0; k < sc.rows(); ++k) {
@@ -529,8 +559,8 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
       const double nan = std::numeric_limits<double>::quiet_NaN();
       m.profile.mean_speed.push_back(n > 0 ? ss / n : nan);
       m.profile.mean_radial_velocity.push_back(n > 0 ? rs / n : nan);
-      // NaN: written by a build that had no pressure (round trip of an older folder).
-      if (has_pressure && !std::isnan(dist.column("pressure")[first]))
+      // NaN: no front at this snapshot, so no pressure profile.
+      if (!std::isnan(dist.column("pressure")[first]))
         m.pressure.push_back(dist.column("pressure")[first + b]);
     }
     m.band.typical = s("packing_typical");
@@ -547,6 +577,9 @@ Realisation parse_realisation(const std::vector<RealisationFile>& files, std::ui
     m.measures.densest_cell = s("packing_densest_cell");
     m.measures.local_median = s("packing_local_median");
     m.measures.local_upper = s("packing_local_upper");
+    m.measures.cell_small = s("packing_cell5");
+    m.measures.cell_large = s("packing_cell20");
+    m.measures.voronoi_median = s("packing_voronoi_median");
     r.snapshots.push_back(std::move(m));
     first += bins;
   }
@@ -591,7 +624,12 @@ std::filesystem::path temporary_realisation(const std::filesystem::path& dir) {
 
 Realisation read_realisation(const std::filesystem::path& dir, std::uint64_t index) {
   std::vector<RealisationFile> files;
-  for (const char* name : kRealisationFiles) files.push_back({name, read_text(dir / name)});
+  for (const char* name : kRealisationFiles) {
+    // A folder of a build before the format file: refused by check_format, not "cannot read".
+    if (std::string_view(name) == kRealisationFiles[3] && !std::filesystem::exists(dir / name))
+      continue;
+    files.push_back({name, read_text(dir / name)});
+  }
   return parse_realisation(files, index, dir);
 }
 

@@ -79,11 +79,13 @@ inline constexpr double kFrontMinActive = 50;
 // The columns a realisation adds to the Recorder's, from the active particles at each sample
 // with N_t >= kFrontMinActive (NaN before): the front radius (analysis/band_measures.h), the
 // radial momentum P_r and A of the same particles with their directions redrawn, the finite-N
-// floor of an isotropic cloud (sim/observables.h), and the share of their kinetic energy held
-// behind the band's inner edge (analysis/core_energy.h). Folders written before the last column
-// existed are read without it.
-inline constexpr std::array<const char*, 4> kAddedColumns = {
-    "front_radius", "radial_momentum", "anisotropy_isotropic", "core_energy_share"};
+// floor of an isotropic cloud (sim/observables.h), the share of their kinetic energy held
+// behind the band's inner edge (analysis/core_energy.h); then, at every sample, the kicked
+// particle's distance from where it started, its speed and its collisions (sim/engine.h
+// KickedParticle; NaN where it is not known: 1D, the unbounded medium).
+inline constexpr std::array<const char*, 7> kAddedColumns = {
+    "front_radius",        "radial_momentum", "anisotropy_isotropic", "core_energy_share",
+    "kicked_displacement", "kicked_speed",    "kicked_collisions"};
 
 struct Realisation {
   std::uint64_t index = 0;
@@ -123,9 +125,14 @@ bool simulate_realisation(const EnsembleSpec& spec, std::uint64_t index, Realisa
                           const InFlightOptions& in_flight = {});
 
 // Folder layout: timeseries.csv, distributions.csv (one row per snapshot time and bin),
-// snapshot_scalars.csv (one row per snapshot time).
-inline constexpr std::array<const char*, 3> kRealisationFiles = {
-    "timeseries.csv", "distributions.csv", "snapshot_scalars.csv"};
+// snapshot_scalars.csv (one row per snapshot time), format (kRealisationFormat and a newline).
+inline constexpr std::array<const char*, 4> kRealisationFiles = {
+    "timeseries.csv", "distributions.csv", "snapshot_scalars.csv", "format"};
+// What the folder's columns mean, raised whenever they change, so that a folder of another
+// build is refused in one line instead of read with columns missing or meaning something else.
+// 2: the packing scan (cells of 5 and 20, Voronoi median) and the kicked particle's columns;
+// 1 (no format file): before them.
+inline constexpr const char* kRealisationFormat = "grainshock realisation 2";
 struct RealisationFile {
   std::string name, text;
 };

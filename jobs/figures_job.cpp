@@ -162,7 +162,8 @@ FiguresResult run_pass(const FiguresOptions& o, const FiguresPlan& plan, const f
     CaseResult cr{&c, std::move(r.sums), {}, run_cost.wall};
     cr.fits = write_ensemble_folder(edir, cr.sums, FitOptions{}, cr.wall, o.threads, run_now);
     if (!c.delta_scan) {
-      const CaseContext context{c.name, slope_figure_of(c), c.collapse, c.superseded_for_alpha};
+      const CaseContext context{c.name, slope_figure_of(c), c.collapse, c.superseded_for_alpha,
+                                c.role == CaseRole::Packing};
       auto more = case_comparisons(context, c.spec, cr.fits);
       // The snowplow runs answer their own question (the report's section), not the paper's.
       if (c.role == CaseRole::Snowplow)

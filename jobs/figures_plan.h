@@ -27,7 +27,9 @@ enum class FiguresMode { Tiny, Quick, Full };
 // long enough that the local slopes of R_t, N_t, E_t and P_r can tell the momentum-conserving
 // snowplow (alpha = 1/(d+1)) from the pressure-driven one (2/(d+4), analysis/snowplow.h); their
 // exponents are reported, not counted, and stay out of phi1.
-enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit, Snowplow };
+// Packing: 2D r = 0.1, 0.5, 0.8 at the paper's delta = 1e-4 with snapshots over the last decade,
+// for the band packing alone (its counted reading; the paper cases run at 1e-5).
+enum class CaseRole { Paper, DeltaScan, Elastic3D, Long3D, Limit, Snowplow, Packing };
 
 struct FigureCase {
   std::string name;  // folder under ensembles/, e.g. "d2_r0.1"

@@ -350,11 +350,14 @@ std::string fig_local_slopes(const CaseResult& c, const Out& out) {
       t_start = ts.column("t")[i];
       break;
     }
-  std::string gp = gnuplot_preamble(base, 1900, 900);
+  // Four panels a row: 7 quantities, 10 with the kicked particle's (elastic blasts in a box).
+  const int rows = int(f.exponents.size() + 3) / 4;
+  std::string gp = gnuplot_preamble(base, 1900, 450 * rows);
   gp += "set xrange [" + format_double(p.paper_time(t_start)) + ":" +
         format_double(p.paper_time(ts.column("t").back())) + "]\n";
   gp +=
-      "set multiplot layout 2,4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
+      "set multiplot layout " + std::to_string(rows) +
+      ",4 title 'Local slopes d ln X / d ln t, d = " + std::to_string(p.dim) +
       ", r = " + rtext(p.restitution) + " (" + std::to_string(c.sums.count()) +
       " realisations; band: 95% bootstrap; dashed: theory; thick: fit on the plateau)'\n"
       "set logscale x\nset format x '10^{%L}'\nset xlabel '" + kPaperTimeLabel + "'\n"
@@ -680,7 +683,8 @@ std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
       plot += std::string(plot.empty() ? "plot " : ", \\\n     ") +
               "'fig9_packing.csv' skip 1 using ($1==" + rtext(r) +
               " ? $2 : 1/0):3 with steps lw 2 title sprintf('r = " + rtext(r) +
-              ": local 90%% %.2f, densest cell %.2f', " +
+              ": Voronoi median %.2f, local 90%% %.2f, densest cell %.2f', " +
+              format_double(c->fits.last_scalar("packing_voronoi_median")) + ", " +
               format_double(c->fits.last_scalar("packing_local_upper")) + ", " +
               format_double(c->fits.last_scalar("packing_densest_cell")) + ")";
     }

@@ -440,6 +440,22 @@ void Engine<D>::advance(std::int32_t i) {
   k.t = now_;
 }
 
+// A kick in a box makes the kicked particle the first record (the constructor) and records keep
+// their order, so it is record 0; its counter is bumped at each of its collisions and nowhere
+// else in 2D and 3D.
+template <int D>
+KickedParticle Engine<D>::kicked_particle() const {
+  KickedParticle out;
+  if (D < 2 || config_.initial != Initial::Kick || config_.unbounded() || kin_.empty()) return out;
+  out.known = true;
+  out.tag = tag_[0];
+  const Vec<D> x = position(0) - Vec<D>::Constant(0.5 * grid_.box());
+  for (int k = 0; k < D; ++k) out.displacement[k] = x[k];
+  out.speed = kin_[0].v.norm();
+  out.collisions = kin_[0].counter;
+  return out;
+}
+
 template <int D>
 Vec<D> Engine<D>::position(std::int32_t i) const {
   Vec<D> x = kin_[i].x + kin_[i].v * (now_ - kin_[i].t);

@@ -55,6 +55,17 @@ struct Sample {
   std::int64_t events = 0;
 };
 
+// The kicked particle of a kick in a box (2D, 3D), which starts at the box centre (sim/initial.h):
+// the "impurity" of Kumar, Dhar and Krapivsky (arXiv:2505.02225, 2025). Not known in 1D, in
+// thermal starts and in the unbounded medium, whose kicked record is not kept in its state.
+struct KickedParticle {
+  bool known = false;
+  std::int32_t tag = -1;  // its index in the initial state and in snapshots
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // unwrapped position - box centre
+  double speed = 0;
+  std::int64_t collisions = 0;  // velocity-changing collisions it took part in
+};
+
 struct EngineStats {
   std::int64_t events = 0;      // everything popped from the queue
   std::int64_t collisions = 0;  // velocity-changing collisions
@@ -101,6 +112,7 @@ class Simulation {
   // nothing).
   virtual void active_positions(std::vector<Eigen::Vector3d>& out) const = 0;
   virtual const EngineStats& stats() const = 0;
+  virtual KickedParticle kicked_particle() const = 0;
   // Deepest overlap (1 - distance) of any pair now, by a scan of all cells; 0 if none.
   virtual double max_overlap_now() const = 0;
   // The whole state, derived structures included (cell lists, queue, predictions), so that a
@@ -133,6 +145,7 @@ class Engine final : public Simulation {
   void active_snapshot(Snapshot& s) const override;
   void active_positions(std::vector<Eigen::Vector3d>& out) const override;
   const EngineStats& stats() const override { return stats_; }
+  KickedParticle kicked_particle() const override;
   double max_overlap_now() const override;
   void save(StateWriter& out) const override;
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -208,4 +209,39 @@ TEST_F(InFlight, TruncatedOrCorruptStateRunsTheRealisationAgain) {
 }
 
 }  // namespace
+// A realisation folder written with other columns is refused in one line naming it, whether it
+// predates the format file or states another format; its own format reads back.
+TEST_F(InFlight, RealisationOfAnotherFormatIsRefusedInOneLine) {
+  const EnsembleSpec spec = small_spec(2, Medium::Box);
+  Realisation r;
+  ASSERT_TRUE(simulate_realisation(spec, 0, r));
+  const fs::path dir = root_ / "000000";
+  write_realisation(dir, realisation_files(r));
+  const Realisation back = read_realisation(dir, 0);
+  ASSERT_EQ(back.snapshots.size(), r.snapshots.size());
+  EXPECT_TRUE(std::isfinite(back.snapshots.back().measures.voronoi_median));
+  auto refusal = [&] {
+    try {
+      read_realisation(dir, 0);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  {
+    std::ofstream(dir / "format") << "grainshock realisation 1\n";
+    const std::string why = refusal();
+    EXPECT_NE(why.find("000000: realisation of another format ('grainshock realisation 1'"),
+              std::string::npos)
+        << why;
+    EXPECT_EQ(why.find('\n'), std::string::npos);
+  }
+  fs::remove(dir / "format");
+  const std::string why = refusal();
+  EXPECT_NE(why.find("000000: realisation of an older grainshock (no format file"),
+            std::string::npos)
+      << why;
+  EXPECT_EQ(why.find('\n'), std::string::npos);
+}
+
 }  // namespace gs

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "analysis/paper.h"
 #include "jobs/figures_plan.h"
 #include "sim/config.h"
 
@@ -246,6 +247,27 @@ TEST(FiguresPlan, TheCollapseIsDrawnAtThePapersTimesWhereTheRunReachesThem) {
   ASSERT_EQ(q->figure_times.size(), 3u);
   EXPECT_EQ(q->figure_times.back(), q->spec.physics.t_max);
   EXPECT_NEAR(q->figure_times.front() / q->figure_times.back(), 30000.0 / 75000, 1e-12);
+}
+
+TEST(FiguresPlan, PackingCasesRunAtThePapersDeltaWithSnapshotsOverADecade) {
+  for (FiguresMode m : {FiguresMode::Tiny, FiguresMode::Quick, FiguresMode::Full}) {
+    const FiguresPlan plan = figures_plan(m, 1);  // of_role points into it
+    const auto cases = of_role(plan, CaseRole::Packing);
+    ASSERT_EQ(cases.size(), 3u);
+    for (const FigureCase* c : cases) {
+      const auto& p = c->spec.physics;
+      EXPECT_EQ(p.dim, 2);
+      EXPECT_LT(p.restitution, 1);
+      EXPECT_EQ(p.cutoff, kPaperCutoff) << c->name;
+      ASSERT_EQ(c->spec.snapshot_times.size(), 4u);
+      EXPECT_DOUBLE_EQ(c->spec.snapshot_times.back() / c->spec.snapshot_times.front(), 8);
+      EXPECT_EQ(c->spec.snapshot_times.back(), p.t_max);
+      if (m == FiguresMode::Full) {
+        EXPECT_EQ(p.particles, kFig1Particles);         // the paper's box
+        EXPECT_DOUBLE_EQ(p.paper_time(p.t_max), 5e4);  // the paper's Fig. 4 last time
+      }
+    }
+  }
 }
 
 TEST(FiguresPlan, Fig1IsAtThePapersTimesInThePapersBox) {

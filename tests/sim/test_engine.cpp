@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 
+#include "io/simulation_file.h"
 #include "sim/engine.h"
 #include "sim/error.h"
 #include "sim/initial.h"
@@ -218,4 +221,52 @@ TEST(InitialState, ThermalHasExactTemperatureAndZeroMomentum) {
 }
 
 }  // namespace
+// The kicked particle of a box kick: free flight from the box centre at v0 until its first
+// collision, which is the run's first; then the snapshot's unwrapped position and velocity of
+// its tag, and the same after a save and a load (records keep their order).
+TEST(Engine, KickedParticleIsFollowedFromTheBoxCentre) {
+  for (int d : {2, 3}) {
+    PhysicsConfig c;
+    c.dim = d;
+    c.particles = d == 2 ? 4000 : 8000;
+    c.restitution = 1.0;
+    auto sim = make_simulation(c);
+    const double centre = 0.5 * c.box();
+    KickedParticle k = sim->kicked_particle();
+    ASSERT_TRUE(k.known);
+    while (sim->stats().collisions == 0) {
+      k = sim->kicked_particle();
+      EXPECT_EQ(k.collisions, 0);
+      EXPECT_NEAR(k.displacement.norm(), c.speed * sim->time(), 1e-9);
+      EXPECT_NEAR(k.speed, c.speed, 1e-12);
+      sim->step();
+    }
+    EXPECT_EQ(sim->kicked_particle().collisions, 1) << d;  // the first collision is its own
+    sim->run_until(60);
+    k = sim->kicked_particle();
+    const Snapshot s = sim->snapshot();
+    const auto tag = std::size_t(k.tag);
+    Eigen::Vector3d x = s.position[tag];
+    for (int a = 0; a < d; ++a) x[a] -= centre;
+    EXPECT_NEAR((x - k.displacement).norm(), 0, 1e-9) << d;
+    EXPECT_NEAR(s.velocity[tag].norm(), k.speed, 1e-12) << d;
+    EXPECT_GT(k.collisions, 1) << d;
+    EXPECT_LT(k.collisions, sim->stats().collisions) << d;
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("gs_kicked_" + std::to_string(::getpid()) + ".state");
+    save_simulation(*sim, file);
+    const KickedParticle back = load_simulation_file(file)->kicked_particle();
+    std::filesystem::remove(file);
+    EXPECT_EQ(back.tag, k.tag);
+    EXPECT_EQ(back.collisions, k.collisions);
+    EXPECT_EQ(back.displacement, k.displacement);
+  }
+  // Not known where its record is not kept.
+  PhysicsConfig u;
+  u.dim = 2;
+  u.medium = Medium::Unbounded;
+  u.particles = 20000;
+  EXPECT_FALSE(make_simulation(u)->kicked_particle().known);
+}
+
 }  // namespace gs
