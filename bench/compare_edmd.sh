@@ -24,6 +24,9 @@ gs=$(realpath "$1") edmd=$(realpath "$2") pairs=${3:-3}
 shift $(($# < 3 ? $# : 3))
 packings=(0.2 0.4 0.5)
 [ $# -eq 0 ] || packings=("$@")
+for phi in "${packings[@]}"; do  # the packings of the bench cases sim/thermal3d_phi*
+  case $phi in 0.2 | 0.4 | 0.5) ;; *) echo "$0: packing $phi: not 0.2, 0.4 or 0.5" >&2; exit 2 ;; esac
+done
 for b in "$gs" "$edmd"; do
   [ -x "$b" ] || { echo "$0: $b is not an executable" >&2; exit 2; }
 done
@@ -81,7 +84,7 @@ for phi in "${packings[@]}"; do
     a=$((p % 2)) b=$((1 - p % 2))
     taskset -c "$a" "$gs" bench "sim/thermal3d_phi$phi" >"$dir/ours" 2>&1 &
     pid=$!
-    theirs=$(edmd_rate "$dir" "$b")
+    theirs=$(edmd_rate "$dir" "$b") || { kill "$pid"; exit 1; }
     wait "$pid"
     ours=$(awk '$1 == "collisions_per_cpu_second" { printf "%.0f", $2 }' "$dir/ours")
     [ -n "$ours" ] || { echo "$0: no figure from grainshock bench:" >&2; cat "$dir/ours" >&2; exit 1; }
