@@ -3,9 +3,10 @@
 # (2022)) on the same elastic 3D gas: N = 1e5 at packings 0.2, 0.4 and 0.5, the start of
 # `run --initial thermal` (the state of the bench cases sim/thermal3d_phi*), warm-up 2 collisions
 # per particle, then 20 per particle measured. EDMD is not built here: give the path of a binary
-# you built from its public sources (its variant "Single" is its fastest; it reads init.sph from
-# its working folder and draws its own Maxwell velocities). EDMD should run microcanonically
-# (thermostat off, as its paper's benchmarks do) and to a maxtime past the measured window.
+# you built from its public sources (it reads init.sph from its working folder and draws its own
+# Maxwell velocities). EDMD should run microcanonically (thermostat off, as its paper's
+# benchmarks do) and to a maxtime past the measured window. Its fastest variant depends on the
+# packing (on 2 cores: Cell at 0.2, Single at 0.4 and 0.5): run the script once per variant.
 #
 #   bench/compare_edmd.sh GRAINSHOCK EDMD [PAIRS] [PACKING ...]
 #   bench/compare_edmd.sh build/apps/grainshock /work/edmd/Single/md 3 0.2 0.4 0.5
