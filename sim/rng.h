@@ -21,26 +21,49 @@ enum class Stream : std::uint64_t {
   Shuffle = 6  // directions redrawn for the anisotropy of an isotropic cloud, keyed by the sample
 };
 
+// Where the seeding of a stream has got to after (seed, realisation, purpose) and some keys: the
+// streams of many cells share the mixing of their common keys (those of one block share all but
+// the last coordinate), so it can be done once and extended by the last key per cell. A stream
+// seeded from it is the stream the keyed Rng constructor gives for the same keys.
+class RngSeed {
+ public:
+  RngSeed() = default;  // unseeded: a place in an array, to be assigned
+  RngSeed(std::uint64_t seed, std::uint64_t realisation, Stream purpose) : x_(seed) {
+    x_ = splitmix(x_) ^ (realisation * 0x9E3779B97F4A7C15ULL);
+    x_ = splitmix(x_) ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL);
+  }
+  // One more key (a cell coordinate), mixed in by one splitmix step.
+  RngSeed then(std::int64_t key) const {
+    RngSeed next = *this;
+    next.x_ = splitmix(next.x_) ^ (static_cast<std::uint64_t>(key) * 0x8CB92BA72F3D8DD7ULL);
+    return next;
+  }
+
+ private:
+  friend class Rng;
+  static std::uint64_t splitmix(std::uint64_t& x) {
+    std::uint64_t z = (x += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t x_ = 0;
+};
+
 class Rng {
  public:
-  Rng(std::uint64_t seed, std::uint64_t realisation, Stream purpose) {
-    std::uint64_t x = seed;
-    x = splitmix(x) ^ (realisation * 0x9E3779B97F4A7C15ULL);
-    x = splitmix(x) ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL);
-    for (auto& w : s_) w = splitmix(x);
+  explicit Rng(RngSeed from) {
+    for (auto& w : s_) w = RngSeed::splitmix(from.x_);
   }
+  Rng(std::uint64_t seed, std::uint64_t realisation, Stream purpose)
+      : Rng(RngSeed(seed, realisation, purpose)) {}
 
   // A sub-stream of (seed, realisation, purpose) keyed further by integers (a cell's coordinates):
   // each key is mixed in by one more splitmix step, so distinct keys give unrelated streams.
   template <std::size_t K>
   Rng(std::uint64_t seed, std::uint64_t realisation, Stream purpose,
-      const std::array<std::int64_t, K>& key) {
-    std::uint64_t x = seed;
-    x = splitmix(x) ^ (realisation * 0x9E3779B97F4A7C15ULL);
-    x = splitmix(x) ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL);
-    for (const std::int64_t k : key) x = splitmix(x) ^ (static_cast<std::uint64_t>(k) * 0x8CB92BA72F3D8DD7ULL);
-    for (auto& w : s_) w = splitmix(x);
-  }
+      const std::array<std::int64_t, K>& key)
+      : Rng(with_keys(RngSeed(seed, realisation, purpose), key)) {}
 
   std::uint64_t next() {
     const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
@@ -71,11 +94,10 @@ class Rng {
 
  private:
   static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-  static std::uint64_t splitmix(std::uint64_t& x) {
-    std::uint64_t z = (x += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
+  template <std::size_t K>
+  static RngSeed with_keys(RngSeed s, const std::array<std::int64_t, K>& key) {
+    for (const std::int64_t k : key) s = s.then(k);
+    return s;
   }
   std::uint64_t s_[4];
 };

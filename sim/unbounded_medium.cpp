@@ -124,7 +124,9 @@ UnboundedMedium<D>::UnboundedMedium(const MediumOptions& o)
 template <int D>
 UnboundedMedium<D>::UnboundedMedium(double candidate_density, double cell_side,
                                     std::uint64_t seed, std::uint64_t realisation)
-    : rho_(candidate_density), side_(cell_side), seed_(seed), realisation_(realisation) {
+    : rho_(candidate_density),
+      side_(cell_side),
+      medium_seed_(seed, realisation, Stream::Medium) {
   if (!(cell_side >= 1.0) || !(cell_side <= 16.0))
     throw UserError("medium cell side: must be in [1, 16] diameters, not " +
                     std::to_string(cell_side));
@@ -159,16 +161,32 @@ bool UnboundedMedium<D>::earlier(const Candidate& a, const Candidate& b) {
   return false;
 }
 
+// A cell's key mixes in x, then y, then z (Rng's keyed constructor), so the cells of a block share
+// the mixing of all but their last coordinate: it is done here once per row, not once per cell,
+// and each cell's stream is the one the keyed constructor gives. Level k (x, then x and y) is
+// built in place from level k - 1, downwards, so that each entry is read before it is replaced.
+template <int D>
+void UnboundedMedium<D>::seed_rows(const Cell& block) {
+  row_seeds_[0] = medium_seed_;
+  int width = 1;
+  for (int k = 0; k + 1 < D; ++k, width *= kBlock)
+    for (int i = width * kBlock - 1; i >= 0; --i)
+      row_seeds_[static_cast<std::size_t>(i)] =
+          row_seeds_[static_cast<std::size_t>(i % width)].then(block[k] * kBlock + i / width);
+}
+
 template <int D>
 void UnboundedMedium<D>::draw_block(const Cell& block) {
   const Block entry{static_cast<std::uint32_t>(pool_.size()),
                     static_cast<std::uint32_t>(offsets_.size())};
+  seed_rows(block);
+  constexpr int kRows = kBlockCells / kBlock;
   Cell local{};
   for (int n = 0; n < kBlockCells; ++n) {
     Cell c;
     for (int k = 0; k < D; ++k) c[k] = block[k] * kBlock + local[k];
     offsets_.push_back(static_cast<std::uint32_t>(pool_.size() - entry.first_candidate));
-    Rng rng(seed_, realisation_, Stream::Medium, c);
+    Rng rng(row_seeds_[static_cast<std::size_t>(n % kRows)].then(c[D - 1]));
     std::uint64_t count = 0;
     for (const Piece& piece : pieces_) {
       const double m = piece.mean;

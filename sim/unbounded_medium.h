@@ -36,6 +36,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "sim/rng.h"
 #include "sim/vec.h"
 
 namespace gs {
@@ -110,6 +111,7 @@ class UnboundedMedium {
   Range cell(const Cell& c);  // draws the cell's block the first time
   const Block& block(const Cell& b);
   void draw_block(const Cell& block);
+  void seed_rows(const Cell& block);
   // The candidates of the cells lo..hi (2 or 3 a side) into stencil_, unless they are there.
   void gather(const Cell& lo, const Cell& hi);
   bool accepted(std::uint32_t i);
@@ -120,7 +122,10 @@ class UnboundedMedium {
     double mean, p0;  // p0 = e^-mean
   };
   std::vector<Piece> pieces_;
-  std::uint64_t seed_, realisation_;
+  // The streams' shared seeding: (seed, realisation, Stream::Medium), then per row of the block
+  // being drawn its leading coordinates (all but the last), one row per kBlock cells.
+  RngSeed medium_seed_;
+  std::array<RngSeed, kBlockCells / kBlock> row_seeds_;
   std::vector<Candidate> pool_;  // indices stay valid as it grows
   std::vector<std::uint32_t> offsets_;  // per block, kBlockCells + 1 starts within the block
   std::unordered_map<Cell, Block, CellHash> blocks_;

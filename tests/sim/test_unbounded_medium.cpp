@@ -96,6 +96,48 @@ TEST(UnboundedMedium, SameParticlesWhateverTheOrderCellsAreMadeIn) {
   expect_same_whatever_the_order<3>(0.5, 10);
 }
 
+// The medium is part of every unbounded run's history: these cells were drawn by the generator
+// before its cells' seeding shared the mixing of their leading coordinates, which must leave
+// every cell's stream, and so every particle, bit for bit as it was.
+template <int D>
+void expect_pinned(double candidate_density, const std::array<std::int64_t, D>& cell,
+                   const std::vector<double>& coordinates) {
+  UnboundedMedium<D> medium(candidate_density, 2.5, 7, 3);
+  VecArray<D> out;
+  medium.particles(cell, out);
+  ASSERT_EQ(out.size() * D, coordinates.size());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < D; ++k) EXPECT_EQ(out[i][k], coordinates[i * D + k]) << i << " " << k;
+}
+
+TEST(UnboundedMedium, CellsAreTheGeneratorsOfBefore) {
+  expect_pinned<3>(0.4, {-9, 4, 17},
+                   {-0x1.45dc0480ab4acp+4, 0x1.8de50ce67d8p+3, 0x1.5e894cf3c3ac1p+5,
+                    -0x1.56625c106561fp+4, 0x1.75f67533e3af6p+3, 0x1.5cfa0ef73e2afp+5,
+                    -0x1.4e51871437a7ap+4, 0x1.5e46bf1eedfbbp+3, 0x1.568fcedb80539p+5,
+                    -0x1.43454a5f1319cp+4, 0x1.51f56092d92edp+3, 0x1.64f2163643f84p+5});
+  expect_pinned<3>(0.4, {0, -1, 2},
+                   {0x1.6efc3dde43142p-2, -0x1.319917d45f03cp+1, 0x1.b794da93806ecp+2,
+                    0x1.20276c61996dp+1, -0x1.09274f9bc0edp+1, 0x1.97d00af1d6ebap+2,
+                    0x1.21550fc4fd67cp+0, -0x1.106656b63da22p+0, 0x1.46ccf713c3888p+2});
+  expect_pinned<2>(0.5, {5, -33},
+                   {0x1.d545bbc802948p+3, -0x1.42565081554fbp+6, 0x1.b52ab1923e5bfp+3,
+                    -0x1.4150f3547a66ap+6});
+  expect_pinned<1>(0.5, {-300}, {-0x1.76c44cf9e823dp+9});
+}
+
+// A stream seeded through RngSeed key by key is the keyed constructor's stream.
+TEST(UnboundedMedium, SharedSeedingIsTheKeyedStream) {
+  const RngSeed base(11, 2, Stream::Medium);
+  for (const std::array<std::int64_t, 3> key : {std::array<std::int64_t, 3>{0, 0, 0},
+                                                {-1, 7, -123456789}, {1 << 30, -5, 3}}) {
+    Rng keyed(11, 2, Stream::Medium, key), shared(base.then(key[0]).then(key[1]).then(key[2]));
+    for (int i = 0; i < 8; ++i) EXPECT_EQ(keyed.next(), shared.next());
+  }
+  Rng plain(11, 2, Stream::Medium), unkeyed{base};
+  EXPECT_EQ(plain.next(), unkeyed.next());
+}
+
 TEST(UnboundedMedium, OtherRealisationsAndCellSidesGiveOtherMedia) {
   UnboundedMedium<2> a(options<2>(0.25, 0)), b(options<2>(0.25, 1));
   auto o = options<2>(0.25, 0);
