@@ -113,8 +113,10 @@ void add_movie_flags(CLI::App& sub, MovieJob& job) {
   sub.add_flag("--show-inactive", job.movie.show_inactive,
                "Also draw the particles at rest, in a faint neutral colour");
   sub.add_option("--slab", job.movie.slab,
-                 "3D: keep a slab this thick through the centre, facing the camera (0: all)")
-      ->capture_default_str();
+                 "3D: keep a slab this thick through the centre, facing the camera (0: all). "
+                 "Default: 6 for a kick (its shell is hollow), 0 for others' files, as OVITO "
+                 "draws them")
+      ->option_text("FLOAT (6 for a kick, else 0)");
   sub.add_flag("--clip", job.movie.clip,
                "3D: cut away the half nearer than the plane through the front's centre");
   sub.add_option("--azimuth", job.movie.azimuth, "3D: camera azimuth about z, degrees")

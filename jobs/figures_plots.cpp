@@ -733,7 +733,9 @@ std::pair<double, double> slope_yrange(const ExponentFit& e) {
     }
   std::sort(half.begin(), half.end());
   const double band = half.empty() ? 0 : sorted_quantile(half, 0.5);
-  const double pad = std::max({0.3 * (hi - lo), 0.03, band});
+  // The band pads the range up to half a unit of exponent: wider (one particle's slope, as the
+  // kicked particle's) it is drawn cut by the panel's edges rather than squash the slope flat.
+  const double pad = std::max({0.3 * (hi - lo), 0.03, std::min(band, 0.5)});
   return {lo - pad, hi + 1.5 * pad};  // room above for the key
 }
 

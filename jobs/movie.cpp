@@ -23,6 +23,7 @@
 #include "render/field.h"
 #include "render/follow_camera.h"
 #include "render/movie_parts.h"
+#include "render/render_choices.h"
 #include "render/renderer.h"
 #include "sim/error.h"
 #include "sim/stop.h"
@@ -239,6 +240,7 @@ StoredMovie prepare_stored_movie(const std::vector<std::string>& files,
                     " is of the unbounded medium, which has no box to frame; use --camera follow");
   p.plan.style.field = render::choose_field(o.colour_by, s, files.front());
   if (p.plan.style.field == render::Field::Column) p.plan.style.column = o.colour_by;
+  if (!o.slab) p.plan.view.slab = render::default_slab(s);
   p.plan.style.scale = render::parse_scale(o.scale, p.plan.style.field);
   render::check_style(p.plan.style);
   check_orbit(s.info.dim, o, m.first_name);

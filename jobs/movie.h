@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,9 @@ struct FrontMovieOptions {
   bool range_per_frame = false;  // each frame its own 1-99 percentiles
   bool inset = false;            // the profile across the band, bottom left
   bool show_inactive = false;
-  double slab = 6;    // 3D: a cut through the shell shows the band, the whole shell only its skin
+  // 3D: unset, a kick's movie is cut to a slab (render::kKickSlab: the whole shell would show
+  // only its skin) and others' files are drawn whole, as `render` draws them.
+  std::optional<double> slab;
   bool clip = false;  // 3D: cut away the half nearer than the plane through the front's centre
   double azimuth = 30, elevation = 20;
   double orbit = 0;          // 3D: total azimuth turned over the movie, degrees

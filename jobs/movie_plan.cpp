@@ -4,6 +4,7 @@
 
 #include "render/field.h"
 #include "render/movie_writer.h"
+#include "render/render_choices.h"
 #include "render/renderer.h"
 #include "sim/error.h"
 #include "sim/format.h"
@@ -31,7 +32,7 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
   render::check_size(o.movie.width, o.movie.height);
   view.width = o.movie.width;
   view.height = o.movie.height;
-  view.slab = o.slab;
+  view.slab = o.slab.value_or(render::kKickSlab);
   view.clip = o.clip;
   view.azimuth = o.azimuth;
   view.elevation = o.elevation;
@@ -40,7 +41,7 @@ MoviePlan make_plan(const FrontMovieOptions& o) {
   if (!follow && o.camera != "fixed")
     throw UsageError("unknown --camera '" + o.camera + "' (use follow or fixed)");
   view.framing = follow ? render::Framing::Fit : render::Framing::Box;
-  if (o.slab < 0) throw UsageError("--slab must be >= 0");
+  if (o.slab && *o.slab < 0) throw UsageError("--slab must be >= 0");
   p.backend = render::parse_backend(o.backend);
   render::check_movie_options(o.movie);
   return p;
@@ -69,7 +70,7 @@ MoviePlan make_live_plan(const PhysicsConfig& physics, const FrontMovieOptions& 
 void check_orbit(int dim, const FrontMovieOptions& o, const std::string& what) {
   if (o.orbit != 0 && dim != 3)
     throw UsageError("--orbit turns the camera about a 3D scene; " + what + " is " +
-                    std::to_string(dim) + "D");
+                     std::to_string(dim) + "D");
 }
 
 void settle_range(MoviePlan& p, int dim) {
@@ -90,7 +91,7 @@ std::vector<double> frame_times(const PhysicsConfig& physics, const FrontMovieOp
   } else if (o.spacing == "log") {
     if (!(o.t_start > 0 && o.t_start < t_max))
       throw UsageError("--t-start " + format_number(o.t_start) + " must be in (0, --t-max " +
-                      format_number(t_max) + ") for --frame-spacing log");
+                       format_number(t_max) + ") for --frame-spacing log");
     for (int k = 0; k < n; ++k)
       t[k] = n == 1 ? t_max : o.t_start * std::pow(t_max / o.t_start, double(k) / (n - 1));
     t.back() = t_max;
@@ -101,8 +102,8 @@ std::vector<double> frame_times(const PhysicsConfig& physics, const FrontMovieOp
   for (int k = 1; k < n; ++k)
     if (!(t[k] - t[k - 1] > 1e-9 * t[k]))
       throw UsageError("--frames " + std::to_string(n) + ": more frames than the run can give (" +
-                      format_number(t[k - 1]) + " and " + format_number(t[k]) +
-                      " are not distinct times); use fewer frames or a longer --t-max");
+                       format_number(t[k - 1]) + " and " + format_number(t[k]) +
+                       " are not distinct times); use fewer frames or a longer --t-max");
   return t;
 }
 

@@ -45,6 +45,10 @@ Backend settle_choices(RenderChoices& c) {
   return parse_backend(c.backend);
 }
 
+double default_slab(const Snapshot& first) {
+  return first.info.dim == 3 && default_field(first) == Field::ScaledSpeed ? kKickSlab : 0;
+}
+
 void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& snaps,
                           const std::string& first_file) {
   Style& st = c.style;
@@ -57,10 +61,7 @@ void settle_for_snapshots(RenderChoices& c, const std::vector<const Snapshot*>& 
         throw UserError("--framing box: " + (snaps.size() == 1 ? first_file : "a snapshot") +
                         " is of the unbounded medium, which has no box (its Lattice is only the "
                         "region the engine addresses); use --framing fit");
-  if (!c.slab)
-    c.view.slab = snaps.front()->info.dim == 3 && default_field(*snaps.front()) == Field::ScaledSpeed
-                      ? kKickSlab
-                      : 0;
+  if (!c.slab) c.view.slab = default_slab(*snaps.front());
   if (snaps.size() == 1) {
     st.field = choose_field(c.colour_by, *snaps.front(), first_file, &c.note);
     if (st.field == Field::Column) st.column = c.colour_by;

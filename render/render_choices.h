@@ -34,6 +34,9 @@ struct RenderChoices {
 };
 
 inline constexpr double kKickSlab = 6;
+// The slab an unset --slab means for a file whose first frame is `first`: kKickSlab for a 3D
+// kick's snapshot, none otherwise (`render` and `movie` alike).
+double default_slab(const Snapshot& first);
 
 // Checks every word and number before any file is read or GL context made (UserError naming
 // the flag) and fills c.style and c.view from them; returns the GL backend asked for.

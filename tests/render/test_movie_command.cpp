@@ -449,6 +449,43 @@ TEST(MovieCommand, ALammpsFixDeformRunIsDrawnWithItsShrinkingBox) {
 
 // The camera turns by --orbit over the movie: the first frame is the picture at --azimuth, the
 // last the picture at --azimuth + --orbit.
+// Others' 3D files are drawn whole by default, as `render` draws them (and OVITO): a movie of
+// an argon box's two frames is the --slab 0 movie, frame by frame, and --slab 6 is another one.
+TEST(MovieCommand, Others3dFilesAreDrawnWholeUnlessASlabIsAskedFor) {
+  const fs::path dir = fresh_dir("others_3d");
+  fs::create_directories(dir);
+  const fs::path atoms = dir / "atoms.xyz";
+  {
+    std::ofstream f(atoms);
+    unsigned x = 12345;
+    auto next = [&] { return (x = x * 1103515245u + 12345u) / 4294967296.0 * 20; };
+    for (int frame = 0; frame < 2; ++frame) {
+      f << "300\nLattice=\"20 0 0 0 20 0 0 0 20\" Properties=species:S:1:pos:R:3 Time=" << frame
+        << " pbc=\"T T T\"\n";
+      for (int i = 0; i < 300; ++i) {
+        const double a = next(), b = next(), c = next();
+        f << "Ar " << a << " " << b << " " << c << "\n";
+      }
+    }
+  }
+  auto frames_of = [&](const std::string& flags) {
+    std::string name = "movie" + flags;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    const fs::path out = dir / name;
+    const Result r = movie(atoms.string() + " --camera fixed --width 160 --height 120 " + flags +
+                           " --keep-frames --quiet --out " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::vector<std::uint8_t>> images;
+    for (int k = 0; k < 2; ++k)
+      images.push_back(
+          read_png((out / "frames" / ("frame_0000" + std::to_string(k) + ".png")).string()).rgba);
+    return images;
+  };
+  const auto by_default = frames_of("");
+  EXPECT_EQ(by_default, frames_of("--slab 0")) << "the default is not the whole box";
+  EXPECT_NE(by_default, frames_of("--slab 6"));
+}
+
 TEST(MovieCommand, OrbitTurnsTheCameraByTheGivenAzimuth) {
   const auto files =
       stored_snapshots("orbit_run", "--dim 3 --medium box --particles 3000 --seed 5 --t-max 200");
