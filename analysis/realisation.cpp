@@ -113,8 +113,8 @@ void check_format(const std::vector<RealisationFile>& files, const std::filesyst
                       escaped(f.text.substr(0, f.text.find('\n'))) + "', this build reads '" +
                       kRealisationFormat + "'); remove it to run it again");
     }
-  throw UserError(dir.string() + ": realisation of an older grainshock (no format file; this build " +
-                  "reads '" + kRealisationFormat + "'); remove it to run it again");
+  throw UserError(dir.string() + ": realisation of an older grainshock (no format file; this " +
+                  "build reads '" + kRealisationFormat + "'); remove it to run it again");
 }
 
 std::string read_text(const std::filesystem::path& file) {
@@ -330,8 +330,8 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
 namespace {
 
 // P_r, A's isotropic floor and the core's energy share of the active particles at sample k,
-// appended to `row` (NaN while there is no band). The shuffles draw from a stream keyed by the sample, so a realisation
-// resumed from its state in flight draws what an unbroken one does.
+// appended to `row` (NaN while there is no band). The shuffles draw from a stream keyed by the
+// sample, so a realisation resumed from its state in flight draws what an unbroken one does.
 void add_band_columns(const Simulation& sim, const PhysicsConfig& c, std::uint64_t index,
                       std::size_t k, double active, Snapshot& act, std::vector<double>& row) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
