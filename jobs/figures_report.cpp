@@ -166,7 +166,6 @@ std::string collapse_files_markdown(const std::vector<CaseResult>& results) {
   return md.str();
 }
 
-// Every exponent of every case with its plateau and the local slope's drift across it.
 // The paper's "faster particles on the inside edge" as numbers, per case at the last snapshot:
 // the mean speed inside the band's median radius over that outside it, and the correlation of
 // speed with distance, each with its standard error over realisations.
@@ -317,8 +316,9 @@ std::string pressure_markdown(const std::vector<CaseResult>& results) {
   std::ostringstream md;
   md << "### The kinetic pressure behind the front\n\n"
         "p(rho) = (1 / (d V_shell)) sum |v - u(rho)|^2 at the last snapshot, in shells of rho / "
-        "R_front of width 1.5 / bins (0.025 at the default 60; simulation units, mean +- standard error over realisations; the "
-        "hard-core collisional part left out, Definitions). A pressure-driven snowplow has a "
+        "R_front of width 1.5 / bins (0.025 at the default 60; simulation units, mean +- "
+        "standard error over realisations; the hard-core collisional part left out, "
+        "Definitions). A pressure-driven snowplow has a "
         "core pressure comparable to the band's; a momentum-conserving one a core near 0.\n\n"
         "| case | t | p(0.25) | p(0.5) | p(0.75) | p(0.9) | p(1.0) |\n"
         "|---|---|---|---|---|---|---|\n";

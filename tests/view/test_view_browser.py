@@ -96,6 +96,22 @@ def problems(browser, page):
     return errors, requests + [r for r in resources if not r.startswith("data:")]
 
 
+def render_ref(snapshot, out, *extra):
+    """`render`'s picture of a snapshot as the page draws it: its size, no overlays."""
+    gs("render", snapshot, "--out", out, "--width", W, "--height", H, "--no-colorbar",
+       "--no-time", "--no-inset", *extra)
+    return out
+
+
+def loaded_canvas(browser, page):
+    """The page's canvas at W x H, once it has loaded with no error and no request."""
+    open_page(browser, page)
+    errors, requests = problems(browser, page)
+    assert errors == [] and requests == [], (errors, requests)
+    browser.execute_script(f"window.gsView.fixSize({W}, {H})")
+    return canvas_image(browser)
+
+
 def canvas_image(browser):
     url = browser.execute_script("return document.getElementById('gs-canvas').toDataURL()")
     img = PIL_Image.open(io.BytesIO(base64.b64decode(url.split(",")[1]))).convert("RGB")
@@ -153,16 +169,8 @@ def test_2d_page_matches_render(browser, run2d, tmp_path):
     gs("view", run2d, "--out", page)
     snaps = in_time_order(run2d)
     assert len(snaps) == 2
-    refs = []
-    for k, s in enumerate(snaps):
-        refs.append(tmp_path / f"ref{k}.png")
-        gs("render", s, "--out", refs[-1], "--width", W, "--height", H, "--no-colorbar",
-           "--no-time", "--no-inset")
-    open_page(browser, page)
-    errors, requests = problems(browser, page)
-    assert errors == [] and requests == [], (errors, requests)
-    browser.execute_script(f"window.gsView.fixSize({W}, {H})")
-    last = canvas_image(browser)
+    refs = [render_ref(s, tmp_path / f"ref{k}.png") for k, s in enumerate(snaps)]
+    last = loaded_canvas(browser, page)
     ref = png(refs[1])
     assert iou(lit(last), lit(ref)) >= 0.9
     # Seen to fail: the PNG of the other frame, and the page's mask shifted by 3 pixels.
@@ -171,9 +179,7 @@ def test_2d_page_matches_render(browser, run2d, tmp_path):
     table = lut(browser)
     assert colour_steps(browser, last, ref, table) <= 2
     # Seen to fail: the same frame drawn with another colormap.
-    wrong = tmp_path / "viridis.png"
-    gs("render", snaps[1], "--out", wrong, "--width", W, "--height", H, "--no-colorbar",
-       "--no-time", "--no-inset", "--colormap", "viridis")
+    wrong = render_ref(snaps[1], tmp_path / "viridis.png", "--colormap", "viridis")
     assert colour_steps(browser, last, png(wrong), table) > 2
 
     # Clicking a disc names it: its index in the file and its position (within the stated error).
@@ -283,16 +289,8 @@ def run3d():
 def test_3d_page_matches_render(browser, run3d, tmp_path):
     page = run3d / "index.html"  # written by run
     snaps = in_time_order(run3d)
-    refs = []
-    for k, s in enumerate(snaps):
-        refs.append(tmp_path / f"ref{k}.png")
-        gs("render", s, "--out", refs[-1], "--width", W, "--height", H, "--no-colorbar",
-           "--no-time", "--no-inset")
-    open_page(browser, page)
-    errors, requests = problems(browser, page)
-    assert errors == [] and requests == [], (errors, requests)
-    browser.execute_script(f"window.gsView.fixSize({W}, {H})")
-    last = canvas_image(browser)
+    refs = [render_ref(s, tmp_path / f"ref{k}.png") for k, s in enumerate(snaps)]
+    last = loaded_canvas(browser, page)
     assert iou(lit(last), lit(png(refs[-1]))) >= 0.9
     assert iou(lit(last), lit(png(refs[0]))) < 0.9
     assert iou(np.roll(lit(last), 4, axis=0), lit(png(refs[-1]))) < 0.9
