@@ -22,6 +22,10 @@ int checked_dim(const Snapshot& s) {
   return d;
 }
 
+bool is_active(const Snapshot& s, std::size_t i) {
+  return s.active.empty() || s.active[i] != 0;
+}
+
 void require_velocities(const Snapshot& s) {
   if (!s.has_velocity()) throw UserError("snapshot has no velocities (speeds asked for)");
 }
@@ -32,20 +36,7 @@ Eigen::Vector3d project(const Eigen::Vector3d& x, int d) {
   return {x[0], d > 1 ? x[1] : 0.0, d > 2 ? x[2] : 0.0};  // not head(d): a loop per call
 }
 
-Eigen::Vector3d centre_of_active(const Snapshot& s, int d, std::size_t* n_out) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) {
-      c += project(s.position[i], d);
-      ++n;
-    }
-  if (n_out) *n_out = n;
-  return n ? Eigen::Vector3d(c / double(n)) : c;
-}
-
-}  // namespace
-
+// Volume of a d-dimensional ball of radius a.
 double ball_volume(int d, double a) {
   switch (d) {
     case 1:
@@ -56,6 +47,20 @@ double ball_volume(int d, double a) {
       return 4.0 / 3.0 * std::numbers::pi * a * a * a;
   }
 }
+
+Eigen::Vector3d centre_of_active(const Snapshot& s, int d, std::size_t* n_out) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (is_active(s, i)) {
+      c += project(s.position[i], d);
+      ++n;
+    }
+  if (n_out) *n_out = n;
+  return n ? Eigen::Vector3d(c / double(n)) : c;
+}
+
+}  // namespace
 
 double anisotropy_index(int dim, const Eigen::Vector3d& l) {
   if (dim == 1) return 0;
@@ -84,7 +89,7 @@ Shape measure_shape(const Snapshot& s) {
   Eigen::Vector3d vc = Eigen::Vector3d::Zero();
   double v2 = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.is_active(i)) continue;
+    if (!is_active(s, i)) continue;
     const Eigen::Vector3d x = project(s.position[i], d) - sh.centre;
     g += x * x.transpose();
     if (s.has_velocity()) {
@@ -114,11 +119,11 @@ double radial_momentum(const Snapshot& s) {
   if (n == 0) return 0;
   Eigen::Vector3d vc = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) vc += project(s.velocity[i], d);
+    if (is_active(s, i)) vc += project(s.velocity[i], d);
   vc /= double(n);
   double p = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.is_active(i)) continue;
+    if (!is_active(s, i)) continue;
     const Eigen::Vector3d x = project(s.position[i], d) - c;
     const double r = x.norm();
     if (r > 0) p += (project(s.velocity[i], d) - vc).dot(x) / r;
@@ -134,7 +139,7 @@ double isotropic_anisotropy(const Snapshot& s, Rng& rng, int shuffles) {
   std::vector<double> r;
   r.reserve(n);
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) r.push_back((project(s.position[i], d) - c).norm());
+    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
   double sum = 0;
   std::vector<Eigen::Vector3d> x(n);
   for (int k = 0; k < shuffles; ++k) {
@@ -177,7 +182,7 @@ Snapshot active_subset(const Snapshot& s) {
   Snapshot a;
   a.info = s.info;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.is_active(i)) continue;
+    if (!is_active(s, i)) continue;
     a.position.push_back(s.position[i]);
     if (s.has_velocity()) a.velocity.push_back(s.velocity[i]);
     if (!s.radius.empty()) a.radius.push_back(s.radius[i]);
@@ -195,7 +200,7 @@ std::vector<double> active_distances(const Snapshot& s, const Eigen::Vector3d& c
   r.reserve(s.active.empty() ? s.size()
                              : s.size() - std::count(s.active.begin(), s.active.end(), 0));
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) r.push_back((project(s.position[i], d) - c).norm());
+    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
   return r;
 }
 
@@ -204,7 +209,7 @@ std::vector<double> active_speeds(const Snapshot& s) {
   require_velocities(s);
   std::vector<double> v;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) v.push_back(project(s.velocity[i], d).norm());
+    if (is_active(s, i)) v.push_back(project(s.velocity[i], d).norm());
   return v;
 }
 
@@ -267,7 +272,7 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   };
   std::unordered_map<std::uint64_t, Cell> cells;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) ++cells[key_of(s.position[i])].active;
+    if (is_active(s, i)) ++cells[key_of(s.position[i])].active;
   for (std::size_t i = 0; i < s.size(); ++i) {
     auto it = cells.find(key_of(s.position[i]));
     if (it == cells.end()) continue;
@@ -338,7 +343,7 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   const Eigen::Vector3d centre = centre_of_active(s, d, &active);
   Eigen::Vector3d centre_velocity = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.is_active(i)) centre_velocity += project(s.velocity[i], d);
+    if (is_active(s, i)) centre_velocity += project(s.velocity[i], d);
   if (active > 0) centre_velocity /= double(active);
   const auto r = active_distances(s, centre);
   // The shells are P(R,t)'s histogram bins exactly.
