@@ -312,18 +312,21 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
 
 TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
-  const std::string job =
-      "ensemble " + kSlow + " --realisations 6 --threads 1 --checkpoint-every 30 --out ";
+  // Realisations of about 0.7 s, so that one is caught running.
+  const std::string job = "ensemble --medium box --particles 50000 --restitution 0.5 --t-max 1e5 "
+                          "--quiet --realisations 6 --threads 1 --checkpoint-every 30 --out ";
   ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
+  const auto start = std::chrono::steady_clock::now();
   const pid_t pid = spawn_grainshock(job + stopped.string());
   ASSERT_GT(pid, 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  const auto deadline = start + std::chrono::seconds(60);
   while (finished_count(stopped / "realisations") == 0 &&
          std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  // Past the next realisation's set-up (random sequential addition, 0.05 s), which a stop ends
-  // with no state to keep, into its run of about 2 s.
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // Halfway through the next realisation, timed by the first on this machine at its load: past
+  // its set-up (random sequential addition, 0.05 s), which a stop ends with no state to keep. A
+  // fixed 300 ms landed between realisations once the engine ran one in 0.3 s.
+  std::this_thread::sleep_for((std::chrono::steady_clock::now() - start) / 2);
   ::kill(pid, SIGINT);
   int status = 0;
   ::waitpid(pid, &status, 0);
