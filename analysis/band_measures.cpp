@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "analysis/quantile.h"
@@ -13,16 +12,8 @@
 namespace gs {
 namespace {
 
-double ball(int d, double r) {
-  return d == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
-}
-
-bool active_at(const Snapshot& s, std::size_t i) {
-  return s.active.empty() || s.active[i] != 0;
-}
-
 double particle_volume(const Snapshot& s, std::size_t i, int d) {
-  return ball(d, s.radius.empty() ? 0.5 : s.radius[i]);
+  return ball_volume(d, s.radius.empty() ? 0.5 : s.radius[i]);
 }
 
 double wrap(double x, double box) {
@@ -58,7 +49,7 @@ double densest_shifted_cell(const Snapshot& s, int d, const BandMeasureOptions& 
         key = key * std::size_t(n) + std::size_t(j);
       }
       volume[key] += particle_volume(s, i, d);
-      if (active_at(s, i)) holds[key] = 1;
+      if (s.is_active(i)) holds[key] = 1;
     }
     const double cell_volume = std::pow(side, d);
     for (std::size_t k = 0; k < cells; ++k)
@@ -135,14 +126,14 @@ class PeriodicCells {
 std::vector<double> local_packing(const Snapshot& s, int d, double a) {
   const PeriodicCells cells(s, d, a);
   std::vector<double> out;
-  const double ball_volume = ball(d, a);
+  const double around = ball_volume(d, a);
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!active_at(s, i)) continue;
+    if (!s.is_active(i)) continue;
     double filled = 0;
     cells.near(i, [&](std::size_t j, const Eigen::Vector3d& dx) {
       if (dx.squaredNorm() <= a * a) filled += particle_volume(s, j, d);
     });
-    out.push_back(filled / ball_volume);
+    out.push_back(filled / around);
   }
   return out;
 }
@@ -181,7 +172,6 @@ double farthest_vertex(const Polygon& p) {
 
 }  // namespace
 
-double sphere_volume(int dim, double radius) { return ball(dim, radius); }
 std::vector<double> voronoi_packing(const Snapshot& s, double cap) {
   if (s.info.dim != 2) throw UserError("Voronoi packing: dimension must be 2");
   if (!(s.info.cube_side() > 0)) throw UserError("Voronoi packing needs a cubic periodic box");
@@ -193,7 +183,7 @@ std::vector<double> voronoi_packing(const Snapshot& s, double cap) {
   Polygon cell, next;
   std::vector<double> out;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!active_at(s, i)) continue;
+    if (!s.is_active(i)) continue;
     nb.clear();
     cells.near(i, [&](std::size_t j, const Eigen::Vector3d& dx) {
       const double r2 = dx.head<2>().squaredNorm();
@@ -223,7 +213,7 @@ ShellFront shell_front(std::span<const double> distances, int dim, double ambien
   std::vector<double> density(bins, 0.0);
   for (double r : distances) density[std::min(bins - 1, std::size_t(r / shell))] += 1;
   for (std::size_t b = 0; b < bins; ++b)
-    density[b] /= ball(dim, (b + 1) * shell) - ball(dim, b * shell);
+    density[b] /= ball_volume(dim, (b + 1) * shell) - ball_volume(dim, b * shell);
   const std::size_t peak =
       std::size_t(std::max_element(density.begin(), density.end()) - density.begin());
   const double half = ambient / 2;
@@ -258,7 +248,7 @@ ShellFront front_of(std::span<const Eigen::Vector3d> active, int dim, double amb
 ShellFront measure_front(const Snapshot& s, double ambient, double shell) {
   std::vector<Eigen::Vector3d> active;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (active_at(s, i)) active.push_back(s.position[i]);
+    if (s.is_active(i)) active.push_back(s.position[i]);
   return front_of(active, s.info.dim, ambient, shell);
 }
 

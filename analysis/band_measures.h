@@ -42,9 +42,6 @@ struct BandMeasureOptions {
   double voronoi_cap = 2;
 };
 
-// The volume (area in 2D) of the ball of `radius` in dim = 2 or 3 dimensions.
-double sphere_volume(int dim, double radius);
-
 struct ShellFront {
   double radius = std::numeric_limits<double>::quiet_NaN();
   double peak_density = std::numeric_limits<double>::quiet_NaN();  // number per unit volume

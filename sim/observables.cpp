@@ -22,10 +22,6 @@ int checked_dim(const Snapshot& s) {
   return d;
 }
 
-bool is_active(const Snapshot& s, std::size_t i) {
-  return s.active.empty() || s.active[i] != 0;
-}
-
 void require_velocities(const Snapshot& s) {
   if (!s.has_velocity()) throw UserError("snapshot has no velocities (speeds asked for)");
 }
@@ -36,7 +32,20 @@ Eigen::Vector3d project(const Eigen::Vector3d& x, int d) {
   return {x[0], d > 1 ? x[1] : 0.0, d > 2 ? x[2] : 0.0};  // not head(d): a loop per call
 }
 
-// Volume of a d-dimensional ball of radius a.
+Eigen::Vector3d centre_of_active(const Snapshot& s, int d, std::size_t* n_out) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.is_active(i)) {
+      c += project(s.position[i], d);
+      ++n;
+    }
+  if (n_out) *n_out = n;
+  return n ? Eigen::Vector3d(c / double(n)) : c;
+}
+
+}  // namespace
+
 double ball_volume(int d, double a) {
   switch (d) {
     case 1:
@@ -47,20 +56,6 @@ double ball_volume(int d, double a) {
       return 4.0 / 3.0 * std::numbers::pi * a * a * a;
   }
 }
-
-Eigen::Vector3d centre_of_active(const Snapshot& s, int d, std::size_t* n_out) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) {
-      c += project(s.position[i], d);
-      ++n;
-    }
-  if (n_out) *n_out = n;
-  return n ? Eigen::Vector3d(c / double(n)) : c;
-}
-
-}  // namespace
 
 double anisotropy_index(int dim, const Eigen::Vector3d& l) {
   if (dim == 1) return 0;
@@ -89,7 +84,7 @@ Shape measure_shape(const Snapshot& s) {
   Eigen::Vector3d vc = Eigen::Vector3d::Zero();
   double v2 = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!is_active(s, i)) continue;
+    if (!s.is_active(i)) continue;
     const Eigen::Vector3d x = project(s.position[i], d) - sh.centre;
     g += x * x.transpose();
     if (s.has_velocity()) {
@@ -119,11 +114,11 @@ double radial_momentum(const Snapshot& s) {
   if (n == 0) return 0;
   Eigen::Vector3d vc = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) vc += project(s.velocity[i], d);
+    if (s.is_active(i)) vc += project(s.velocity[i], d);
   vc /= double(n);
   double p = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!is_active(s, i)) continue;
+    if (!s.is_active(i)) continue;
     const Eigen::Vector3d x = project(s.position[i], d) - c;
     const double r = x.norm();
     if (r > 0) p += (project(s.velocity[i], d) - vc).dot(x) / r;
@@ -139,7 +134,7 @@ double isotropic_anisotropy(const Snapshot& s, Rng& rng, int shuffles) {
   std::vector<double> r;
   r.reserve(n);
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
+    if (s.is_active(i)) r.push_back((project(s.position[i], d) - c).norm());
   double sum = 0;
   std::vector<Eigen::Vector3d> x(n);
   for (int k = 0; k < shuffles; ++k) {
@@ -182,7 +177,7 @@ Snapshot active_subset(const Snapshot& s) {
   Snapshot a;
   a.info = s.info;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!is_active(s, i)) continue;
+    if (!s.is_active(i)) continue;
     a.position.push_back(s.position[i]);
     if (s.has_velocity()) a.velocity.push_back(s.velocity[i]);
     if (!s.radius.empty()) a.radius.push_back(s.radius[i]);
@@ -200,7 +195,7 @@ std::vector<double> active_distances(const Snapshot& s, const Eigen::Vector3d& c
   r.reserve(s.active.empty() ? s.size()
                              : s.size() - std::count(s.active.begin(), s.active.end(), 0));
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) r.push_back((project(s.position[i], d) - c).norm());
+    if (s.is_active(i)) r.push_back((project(s.position[i], d) - c).norm());
   return r;
 }
 
@@ -209,7 +204,7 @@ std::vector<double> active_speeds(const Snapshot& s) {
   require_velocities(s);
   std::vector<double> v;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) v.push_back(project(s.velocity[i], d).norm());
+    if (s.is_active(i)) v.push_back(project(s.velocity[i], d).norm());
   return v;
 }
 
@@ -272,7 +267,7 @@ BandPacking band_packing(const Snapshot& s, const PackingOptions& options) {
   };
   std::unordered_map<std::uint64_t, Cell> cells;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) ++cells[key_of(s.position[i])].active;
+    if (s.is_active(i)) ++cells[key_of(s.position[i])].active;
   for (std::size_t i = 0; i < s.size(); ++i) {
     auto it = cells.find(key_of(s.position[i]));
     if (it == cells.end()) continue;
@@ -343,7 +338,7 @@ RadialProfile radial_profile(const Snapshot& s, const Binning& binning) {
   const Eigen::Vector3d centre = centre_of_active(s, d, &active);
   Eigen::Vector3d centre_velocity = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (is_active(s, i)) centre_velocity += project(s.velocity[i], d);
+    if (s.is_active(i)) centre_velocity += project(s.velocity[i], d);
   if (active > 0) centre_velocity /= double(active);
   const auto r = active_distances(s, centre);
   // The shells are P(R,t)'s histogram bins exactly.

@@ -56,6 +56,9 @@ double isotropic_anisotropy(const Snapshot& s, Rng& rng, int shuffles = 4);
 // E_t: the kinetic energy of every particle (unit masses); 0 for a snapshot without velocities.
 double kinetic_energy(const Snapshot& s);
 
+// Volume of a d-dimensional ball of radius a (length in 1D, area in 2D).
+double ball_volume(int d, double a);
+
 // The active particles of `s` alone, in their order, with s.info. Every measure but the band
 // packing looks at active particles only; at 2e6 spheres they are a few per cent of the snapshot,
 // scattered through it, and measuring them from this copy reads the big arrays once instead of

@@ -72,6 +72,8 @@ struct Snapshot {
   std::vector<std::string> notes;
 
   std::size_t size() const { return position.size(); }
+  // Whether particle i has collided; every particle of a file that does not say.
+  bool is_active(std::size_t i) const { return active.empty() || active[i] != 0; }
   // Every particle has a velocity; so has a snapshot of none (the active particles before the
   // first collision), whose speeds are simply an empty set.
   bool has_velocity() const { return !velocity.empty() || position.empty(); }

@@ -15,6 +15,7 @@
 #include "analysis/ensemble_sums.h"
 #include "analysis/table.h"
 #include "sim/error.h"
+#include "sim/observables.h"
 
 namespace gs {
 namespace {
@@ -76,7 +77,7 @@ Blast make_blast(int d, bool into_shell = false) {
         const double moved = kShellIn + 0.5 + 5 * rho / kCoreRadius;
         add_pair(b, into_shell ? Eigen::Vector3d(x * moved / rho) : x, v, true);
       }
-  const double shell_volume = sphere_volume(d, kShellOut) - sphere_volume(d, kShellIn);
+  const double shell_volume = ball_volume(d, kShellOut) - ball_volume(d, kShellIn);
   const auto pairs = std::size_t(0.5 * kShellDensity * shell_volume);
   std::uniform_real_distribution<double> u(-kShellOut, kShellOut);
   for (std::size_t n = 0; n < pairs;) {
@@ -134,7 +135,7 @@ double core_pressure_ratio(int d) {
   for (std::size_t k = 0; k + 1 < p.edges.size(); ++k) {
     if (p.edges[k + 1] > 0.6 + 1e-12) break;
     const double v =
-        sphere_volume(d, p.edges[k + 1] * c.front) - sphere_volume(d, p.edges[k] * c.front);
+        ball_volume(d, p.edges[k + 1] * c.front) - ball_volume(d, p.edges[k] * c.front);
     pv += p.pressure[k] * v;
     volume += v;
   }
