@@ -9,10 +9,6 @@
 namespace gs {
 namespace {
 
-bool active_at(const Snapshot& s, std::size_t i) {
-  return s.active.empty() || s.active[i] != 0;
-}
-
 // The centre of mass of the active particles and its velocity (Shape), and a visit of each
 // active particle's position and velocity relative to them in the first d axes, without a copy
 // of the arrays (millions of spheres in 3D).
@@ -30,7 +26,7 @@ Frame frame_of(const Snapshot& s) {
 template <class F>
 void for_each_active(const Snapshot& s, const Frame& f, F&& visit) {
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!active_at(s, i)) continue;
+    if (!s.is_active(i)) continue;
     Eigen::Vector3d x = s.position[i] - f.centre, v = s.velocity[i] - f.velocity;
     for (int k = f.d; k < 3; ++k) x[k] = v[k] = 0;
     visit(x, v);
@@ -84,7 +80,7 @@ PressureProfile kinetic_pressure(const Snapshot& s, double front, const Binning&
   for (std::size_t b = 0; b < n; ++b) {
     if (p.count[b] == 0) continue;
     const double volume =
-        sphere_volume(f.d, p.edges[b + 1] * front) - sphere_volume(f.d, p.edges[b] * front);
+        ball_volume(f.d, p.edges[b + 1] * front) - ball_volume(f.d, p.edges[b] * front);
     // sum |v - u|^2 with u the shell's mean radial velocity: sum |v|^2 - n u^2.
     const double fluctuation = squares[b] - radial[b] * radial[b] / double(p.count[b]);
     p.pressure[b] = fluctuation / (f.d * volume);
@@ -114,7 +110,7 @@ CoreShareTrend core_share_trend(std::span<const double> t, std::span<const doubl
   c.to = mean[b];
   c.to_sem = sem[b];
   if (!(std::isfinite(c.from) && std::isfinite(c.to))) {
-    c.reading = "not measured";  // no band yet, or realisations from before the measure
+    c.reading = "not measured";  // no band yet at either time
     return c;
   }
   if (!(c.from > 0 && c.to > 0)) {

@@ -52,8 +52,8 @@ PressureProfile kinetic_pressure(const Snapshot& s, double front_radius, const B
 // realisations, so this overstates it), and what it says: "falls" (slope below 0 by more than
 // 2 sigma: the momentum-conserving snowplow's cold interior), "flat" (within 2 sigma of 0: as a
 // core that keeps a finite share, the pressure-driven one, would be; as decisive as sigma is
-// small), "rises", "not measured" when either mean is NaN (no band yet, or realisations from
-// before the measure) and "no core" when either is 0.
+// small), "rises", "not measured" when either mean is NaN (no band yet) and "no core" when
+// either is 0.
 struct CoreShareTrend {
   double t_from = std::numeric_limits<double>::quiet_NaN();
   double t_to = std::numeric_limits<double>::quiet_NaN();

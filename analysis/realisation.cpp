@@ -320,10 +320,11 @@ SnapshotMeasures measure_snapshot(const EnsembleSpec& spec, const Snapshot& s) {
   m.band.fraction.clear();
   m.band.active.clear();
   m.inner = inner_edge_speed(active);
-  // Without a band (no front) there is no rho / R_front to bin: none, rather than zeros.
-  const CoreEnergy core = core_energy(active, spec.physics.density);
-  if (std::isfinite(core.front))
-    m.pressure = kinetic_pressure(active, core.front, pressure_binning(spec)).pressure;
+  // Without a band (no front) there is no rho / R_front to bin: none, rather than zeros. The
+  // front is the one measured above (core_energy's own is the same rule on the same particles).
+  const double front = m.measures.front.radius;
+  if (std::isfinite(front))
+    m.pressure = kinetic_pressure(active, front, pressure_binning(spec)).pressure;
   return m;
 }
 
