@@ -313,8 +313,9 @@ TEST(CliEnsemble, KilledEnsembleResumesToTheSameBytes) {
 TEST(CliEnsemble, InterruptedEnsembleKeepsWhatFinishedAndResumes) {
   const auto whole = scratch_dir("whole"), stopped = scratch_dir("stopped");
   // Realisations of about 0.7 s, so that one is caught running.
-  const std::string job = "ensemble --medium box --particles 50000 --restitution 0.5 --t-max 1e5 "
-                          "--quiet --realisations 6 --threads 1 --checkpoint-every 30 --out ";
+  const std::string job =
+      "ensemble --medium box --particles 50000 --restitution 0.5 --t-max 1e5 "
+      "--quiet --realisations 6 --threads 1 --checkpoint-every 30 --out ";
   ASSERT_EQ(grainshock(job + whole.string()).exit_code, 0);
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = spawn_grainshock(job + stopped.string());
