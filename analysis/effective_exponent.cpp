@@ -177,6 +177,15 @@ class PlateauSearch {
   double mean_slope(std::size_t a, std::size_t b) const {
     return Thirds::mean(mean_prefix_, a, b + 1);
   }
+  // The mean ln t over the samples [lo, hi).
+  double mean_x(std::size_t lo, std::size_t hi) const {
+    double sum = 0;
+    for (std::size_t i = lo; i < hi; ++i) sum += x_[i];
+    return sum / double(hi - lo);
+  }
+  double mean_slope_error(std::size_t a, std::size_t b) {
+    return spread_of([&](const auto& p) { return Thirds::mean(p, a, b + 1); });
+  }
 
   // The thirds of [a, b], or false when one of them holds no sample.
   bool thirds(std::size_t a, std::size_t b, Thirds& w) const {
@@ -363,6 +372,29 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& o) {
   p.passing_windows = readings.size();
   p.window_spread = spread(readings);
   return p;
+}
+
+EndSlope end_slope(const SlopeBand& band, double decades) {
+  PlateauOptions o;
+  o.min_decades = decades;
+  PlateauSearch s(band, o);
+  EndSlope e;
+  if (!s.any()) return e;
+  const std::size_t b = s.last();
+  std::size_t a = b;
+  while (a > s.segment_start(b) && !s.long_enough(a, b)) --a;
+  Thirds w{};
+  if (!s.long_enough(a, b) || !s.thirds(a, b, w)) return e;
+  const Verdict v = s.judge(w);
+  // The thirds' centres, about two thirds of the window apart (exactly so on a fine grid).
+  const double apart = (s.mean_x(w.i2, b + 1) - s.mean_x(a, w.i1)) / std::numbers::ln10;
+  e.found = true;
+  e.window = {s.t(a), s.t(b)};
+  e.slope = s.mean_slope(a, b);
+  e.slope_error = s.mean_slope_error(a, b);
+  e.drift_per_decade = v.drift / apart;
+  e.drift_error = v.drift_error / apart;
+  return e;
 }
 
 namespace {

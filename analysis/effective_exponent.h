@@ -107,6 +107,21 @@ struct Plateau {
 };
 Plateau find_plateau(const SlopeBand& band, const PlateauOptions& options = {});
 
+// Where the local slope stands at a run's end and which way it moves, what a run without a
+// plateau still says: its mean over the last `decades` of usable samples, and the plateau rule's
+// drift D over that window (the last third's mean minus the first's) over the decades between
+// the thirds' centres, a change per decade (exact for a slope linear in ln t), with their
+// resampling errors (0 for one realisation). Not found when the usable samples at the end span less than `decades`.
+struct EndSlope {
+  bool found = false;
+  Window window;
+  double slope = std::numeric_limits<double>::quiet_NaN();
+  double slope_error = std::numeric_limits<double>::quiet_NaN();
+  double drift_per_decade = std::numeric_limits<double>::quiet_NaN();
+  double drift_error = std::numeric_limits<double>::quiet_NaN();
+};
+EndSlope end_slope(const SlopeBand& band, double decades = 1);
+
 // The exponent with a correction to scaling, X = t^b (1 + c t^-omega) to first order: the local
 // slope fitted as s(t) = b + k t^-omega over the usable samples of [t_lo, t_hi], b and k by
 // least squares for each omega of the grid 0.1, 0.15, ..., 2, the omega of least squared

@@ -235,6 +235,55 @@ std::string z_cell(const SnowplowReading& r) {
          figure_number(r.z_momentum, 3) + " | " + figure_number(r.z_pressure, 3);
 }
 
+// The r < 1 cases of the snowplow tables: neither the delta scan nor the packing runs (their
+// own questions).
+bool weighs_the_snowplow(const CaseResult& c) {
+  return !c.plan->spec.physics.elastic() && !c.plan->delta_scan &&
+         c.plan->role != CaseRole::Packing;
+}
+
+std::string end_cell(const EndSlope& e) {
+  if (!e.found) return "-";
+  return figure_number(e.slope, 4) + " +- " + figure_number(e.slope_error, 2);
+}
+
+// Where the runs end (analysis/snowplow.h snowplow_at_the_end): P_r's slope epsilon over the
+// last decade and its drift, the other exponents against what epsilon predicts, the heading.
+std::string snowplow_end_markdown(const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "### Where the runs end\n\n"
+        "A run still in its crossover has no plateau, yet says where its slopes are and which "
+        "way they move. A snowplow (a shell of the swept mass whose momentum P_r grows as "
+        "t^epsilon) has alpha = (1 + epsilon)/(d + 1), so every exponent follows from "
+        "epsilon: the momentum-conserving snowplow is epsilon = 0, the pressure-driven one "
+        "(d - 2)/(d + 4), 1/7 in 3D. Below, the mean local slope over the last decade (+- its "
+        "resampling error), P_r's drift per decade, each other slope against what epsilon "
+        "predicts for it (z), and where epsilon is heading: towards the picture on the side "
+        "its drift points to when the drift exceeds 2 sigma, else the picture within 3 sigma "
+        "(analysis/snowplow.h).\n\n"
+        "| case | last decade | epsilon (P_r) | drift per decade | R_t | from epsilon | z | N_t "
+        "| from epsilon | z | E_t | from epsilon | z | heading |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : results) {
+    if (!weighs_the_snowplow(c)) continue;
+    const auto& p = c.plan->spec.physics;
+    const SnowplowEnd v = snowplow_at_the_end(p.dim, c.fits);
+    md << "| " << c.plan->name << " | ";
+    if (v.epsilon.found)
+      md << figure_number(v.epsilon.window.t_lo, 3) << " - "
+         << figure_number(v.epsilon.window.t_hi, 3) << " | " << end_cell(v.epsilon) << " | "
+         << figure_number(v.epsilon.drift_per_decade, 3) << " +- "
+         << figure_number(v.epsilon.drift_error, 2);
+    else
+      md << "- | - | - | - | - | - | - | - | - | - | - | -";
+    for (const auto& k : v.kinematics)
+      md << " | " << end_cell(k.end) << " | " << figure_number(k.predicted, 4) << " | "
+         << figure_number(k.z, 3);
+    md << " | " << v.heading << " |\n";
+  }
+  return md.str();
+}
+
 // The snowplow question: per r < 1 case, the exponents of R_t, N_t, E_t and P_r with their z
 // against each picture, and the verdict (analysis/snowplow.h).
 std::string snowplow_markdown(const std::vector<CaseResult>& results) {
@@ -257,8 +306,8 @@ std::string snowplow_markdown(const std::vector<CaseResult>& results) {
         "z_pd | chi^2 mc | chi^2 pd | favours |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : results) {
+    if (!weighs_the_snowplow(c)) continue;
     const auto& p = c.plan->spec.physics;
-    if (p.elastic() || c.plan->delta_scan || c.plan->role == CaseRole::Packing) continue;
     const SnowplowVerdict v = weigh_snowplow(p.dim, c.fits);
     md << "| " << c.plan->name;
     for (const auto& r : v.readings) md << " | " << z_cell(r);
@@ -266,6 +315,7 @@ std::string snowplow_markdown(const std::vector<CaseResult>& results) {
        << figure_number(v.chi2_pressure, 3) << " | " << v.favoured
        << (v.strength.empty() ? "" : " (" + v.strength + ")") << " |\n";
   }
+  md << "\n" << snowplow_end_markdown(results);
   return md.str();
 }
 

@@ -402,6 +402,85 @@ TEST(Snowplow, WeighsTheTwoPicturesByTheirZScores) {
   EXPECT_EQ(weigh_snowplow(3, none).favoured, "no readings");
 }
 
+TEST(EndSlope, ReadsTheLastDecadesSlopeAndItsDriftPerDecade) {
+  // A slope linear in ln t, 0.3 + 0.02 per decade, 20 samples a decade to 1.2e6 as the snowplow
+  // runs have: over the last decade its mean is the value at the window's middle sample and its
+  // drift 0.02 per decade, exactly but for the rounding of the sums.
+  SlopeBand band;
+  band.t = log_grid(1e3, 1.2e6, 20);
+  for (double t : band.t) band.slope.push_back(0.3 + 0.02 * std::log10(t));
+  band.lo = band.hi = band.slope;
+  const EndSlope e = end_slope(band);
+  ASSERT_TRUE(e.found);
+  EXPECT_DOUBLE_EQ(e.window.t_hi, band.t.back());
+  EXPECT_GE(std::log10(e.window.t_hi / e.window.t_lo), 1 - 1e-9);
+  EXPECT_NEAR(e.drift_per_decade, 0.02, 1e-12);
+  double mean = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < band.t.size(); ++i)
+    if (band.t[i] >= e.window.t_lo) mean += band.slope[i], ++n;
+  EXPECT_NEAR(e.slope, mean / n, 1e-12);
+  EXPECT_EQ(e.slope_error, 0);  // one realisation: no resampling
+  // A run shorter than the decade asked for has no end slope.
+  EXPECT_FALSE(end_slope(band, 4).found);
+}
+
+// An ensemble whose P_r slope is epsilon(decade) and whose R_t, N_t and E_t slopes are what a
+// snowplow with that epsilon gives, R_t's shifted by `r_shift`: 16 realisations with 0.05% noise
+// a sample, which gives P_r's last-decade slope an error of ~1e-4, as the 3D runs' 20 have.
+EnsembleFits snowplow_fits(int d, double (*epsilon)(double decade), double r_shift = 0) {
+  const std::vector<double> t = log_grid(10, 1.2e6, 20);
+  EnsembleFits f;
+  std::uint64_t key = 0;
+  for (Quantity q : {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
+                     Quantity::RadialMomentum}) {
+    const auto slope = [&](double u) {
+      const double eps = epsilon(u / std::numbers::ln10);
+      const double alpha = alpha_from_exponent(Quantity::RadialMomentum, d, eps);
+      return exponent_from_alpha(q, d, alpha) + (q == Quantity::RadiusRms ? r_shift : 0);
+    };
+    ExponentFit e;
+    e.kind = q;
+    SlopeBandOptions o;
+    o.key = ++key;
+    e.slope = local_slope_band(t, series_with_slope(t, slope, 16, 7 + key, 0.0005), o);
+    f.exponents.push_back(e);
+  }
+  return f;
+}
+
+TEST(Snowplow, HeadsWhereTheRadialMomentumsSlopeDriftsAndChecksTheKinematics) {
+  // As the 3D r = 0.1 runs end (epsilon 0.044 falling by 0.008 a decade): momentum-conserving.
+  const auto falling = [](double dec) { return 0.044 - 0.008 * (dec - 5.6); };
+  const SnowplowEnd m = snowplow_at_the_end(3, snowplow_fits(3, falling));
+  EXPECT_EQ(m.heading, "momentum-conserving");
+  EXPECT_NEAR(m.epsilon.slope, 0.044, 0.002);
+  EXPECT_NEAR(m.epsilon.drift_per_decade, -0.008, 0.002);
+  // The wrong way: the same slope rising heads to the pressure-driven 1/7.
+  const auto rising = [](double dec) { return 0.044 + 0.008 * (dec - 5.6); };
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, rising)).heading, "pressure-driven");
+  // No drift: the picture within 3 sigma, neither when the slope sits between them.
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, [](double) { return 0.0; })).heading,
+            "momentum-conserving");
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, [](double) { return 1.0 / 7; })).heading,
+            "pressure-driven");
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, [](double) { return 0.07; })).heading,
+            "neither");
+  // Moving away from both, below 0 and falling: neither.
+  const auto away = [](double dec) { return -0.03 - 0.01 * (dec - 5.6); };
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, away)).heading, "neither");
+  EXPECT_EQ(snowplow_at_the_end(2, snowplow_fits(2, falling)).heading,
+            "both (the same alpha in 2D)");
+  // The kinematics: R_t, N_t and E_t as epsilon predicts are consistent with it; R_t moved by
+  // 0.01, far beyond its error, is not.
+  for (const auto& k : m.kinematics) EXPECT_LT(std::fabs(k.z), 3) << quantity_name(k.quantity);
+  const SnowplowEnd moved = snowplow_at_the_end(3, snowplow_fits(3, falling, 0.01));
+  EXPECT_GT(std::fabs(moved.kinematics[0].z), 5);
+  EXPECT_EQ(moved.heading, "momentum-conserving");  // the heading reads P_r alone
+  EnsembleFits none;
+  EXPECT_EQ(snowplow_at_the_end(3, none).heading, "no readings");
+}
+
 // One r of `figures --limit` near the elastic limit: M realisations of E_t = E_0 g(t (1 - r^2)^phi
 // / s), g(x) = 1 / (1 + x^0.7), on the run's own grid (20 a decade from 0.1 to t_max), each with
 // a 2% log-normal amplitude and 1% noise a sample; s puts 2D r = 0.99's E_0/2 at the measured

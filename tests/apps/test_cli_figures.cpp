@@ -148,6 +148,7 @@ TEST(CliFigures, TinyRunWritesEveryPromisedFile) {
   EXPECT_TRUE(is_png(dir / "fig11_snowplow_3d.png"));
   EXPECT_TRUE(fs::exists(dir / "fig11_snowplow_3d_d3_r0.1.csv"));
   EXPECT_NE(read_file(dir / "report.md").find("## The snowplow question"), std::string::npos);
+  EXPECT_NE(read_file(dir / "report.md").find("### Where the runs end"), std::string::npos);
   // Greek letters as symbols, not words.
   EXPECT_NE(read_file(dir / "fig4_collapse_2d.gp").find("α"), std::string::npos);
   EXPECT_EQ(read_file(dir / "fig4_collapse_2d.gp").find("alpha"), std::string::npos);
