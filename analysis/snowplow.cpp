@@ -77,47 +77,43 @@ SnowplowEnd snowplow_at_the_end(int d, const EnsembleFits& fits) {
   constexpr double kFloor = 1e-3;  // the plateau rule's: the rounding of an exact series
   SnowplowEnd v;
   v.d = d;
-  const ExponentFit* p = find_exponent(fits, Quantity::RadialMomentum);
-  if (p) v.epsilon = end_slope(p->slope);
+  const auto end_of = [&fits](Quantity q) {
+    const ExponentFit* e = find_exponent(fits, q);
+    return e ? end_slope(e->slope) : EndSlope{};
+  };
+  v.epsilon = end_of(Quantity::RadialMomentum);
+  v.radius = end_of(Quantity::RadiusRms);
+  v.count = end_of(Quantity::ActiveCount);
+  v.energy = end_of(Quantity::Energy);
+  const auto epsilon_of = [d](double alpha) {
+    return exponent_from_alpha(Quantity::RadialMomentum, d, alpha);
+  };
+  const double mc = epsilon_of(momentum_conserving_alpha(d)),
+               pd = epsilon_of(pressure_driven_alpha(d));
+  if (v.radius.found && v.count.found) {
+    v.shell = v.count.slope + v.radius.slope - 1;
+    v.shell_sigma = std::hypot(v.count.slope_error, v.radius.slope_error, kFloor);
+    v.shell_z_momentum = (v.shell - mc) / v.shell_sigma;
+    v.shell_z_pressure = (v.shell - pd) / v.shell_sigma;
+  }
   if (!v.epsilon.found) {
     v.heading = "no readings";
     return v;
   }
-  const double eps = v.epsilon.slope, sigma = v.epsilon.slope_error;
-  const auto epsilon_of = [d](double alpha) {
-    return exponent_from_alpha(Quantity::RadialMomentum, d, alpha);
-  };
-  const auto predicted = [d](Quantity q, double epsilon) {
-    return exponent_from_alpha(q, d, alpha_from_exponent(Quantity::RadialMomentum, d, epsilon));
-  };
-  for (Quantity q : {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy}) {
-    SnowplowKinematic k;
-    k.quantity = q;
-    if (const ExponentFit* e = find_exponent(fits, q)) k.end = end_slope(e->slope);
-    k.predicted = predicted(q, eps);
-    const double from_eps = predicted(q, eps + sigma) - k.predicted;
-    if (k.end.found)
-      k.z = (k.end.slope - k.predicted) /
-            std::hypot(k.end.slope_error, from_eps, kFloor);
-    v.kinematics.push_back(k);
-  }
-  const double mc = epsilon_of(momentum_conserving_alpha(d)),
-               pd = epsilon_of(pressure_driven_alpha(d));
   if (std::fabs(mc - pd) < 1e-12) {
     v.heading = "both (the same alpha in 2D)";
     return v;
   }
-  const double drift = v.epsilon.drift_per_decade;
+  const double eps = v.epsilon.slope, drift = v.epsilon.drift_per_decade;
   if (std::fabs(drift) > 2 * v.epsilon.drift_error + kFloor) {
     const bool to_mc = (mc - eps) * drift > 0, to_pd = (pd - eps) * drift > 0;
-    if (to_mc && to_pd)
-      v.heading = std::fabs(mc - eps) <= std::fabs(pd - eps) ? "momentum-conserving"
-                                                               : "pressure-driven";
-    else
-      v.heading = to_mc ? "momentum-conserving" : to_pd ? "pressure-driven" : "neither";
+    v.heading = to_mc && to_pd ? "undecided"
+                : to_mc        ? "momentum-conserving"
+                : to_pd        ? "pressure-driven"
+                               : "neither";
     return v;
   }
-  const double reach = 3 * sigma + kFloor;
+  const double reach = 3 * v.epsilon.slope_error + kFloor;
   const bool near_mc = std::fabs(eps - mc) <= reach, near_pd = std::fabs(eps - pd) <= reach;
   v.heading = near_mc && near_pd ? "undecided"
               : near_mc          ? "momentum-conserving"

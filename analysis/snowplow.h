@@ -44,31 +44,30 @@ struct SnowplowVerdict {
 };
 SnowplowVerdict weigh_snowplow(int d, const EnsembleFits& fits);
 
-// Where the runs end, which needs no plateau. A snowplow is a shell of the swept mass M ~ R^d
-// whose momentum M dR/dt ~ P_r grows as t^epsilon; then alpha = (1 + epsilon) / (d + 1) and
-// every exponent follows from epsilon (exponent_from_alpha of alpha_from_exponent for P_r). The
+// Where the runs end, which needs no plateau. A snowplow is a shell of the swept mass N ~ R^d
+// whose momentum grows as t^epsilon; then alpha = (1 + epsilon) / (d + 1). The
 // momentum-conserving snowplow is epsilon = 0, the pressure-driven one epsilon = (d - 2) / (d + 4)
-// (1/7 in 3D, 0 in 2D). So P_r's local slope over the last decade (EndSlope) and its drift say
-// which one a run is heading to:
-//  - a significant drift (beyond 2 sigma + 0.001, the plateau rule's floor) heads towards a
-//    picture whose epsilon lies on its side: that one ("momentum-conserving", "pressure-driven"),
-//    the nearer if both do, "neither" if none does;
-//  - no significant drift: the picture within 3 sigma + 0.001 of the slope, "neither" when both
-//    are beyond, "undecided" when both are within;
-//  - in 2D, where both give 0, "both (the same alpha in 2D)"; "no readings" when P_r's last decade
-//    has no usable slope.
-// R_t, N_t and E_t at the run's end are compared with what epsilon predicts for them (z, sigma
-// of both end slopes combined): whether the band moves as a snowplow at all.
-struct SnowplowKinematic {
-  Quantity quantity = Quantity::RadiusRms;
-  EndSlope end;
-  double predicted = std::numeric_limits<double>::quiet_NaN();  // from epsilon
-  double z = std::numeric_limits<double>::quiet_NaN();
-};
+// (1/7 in 3D, 0 in 2D). Two readings of epsilon at a run's end (EndSlope, the last decade):
+//  - P_r's own slope, whose drift says which picture the run is heading to:
+//    - a significant drift (beyond 2 sigma + 0.001, the plateau rule's floor) heads towards the
+//      pictures whose epsilon lies on its side: the one ("momentum-conserving",
+//      "pressure-driven") when the other lies behind, "undecided" when both lie ahead (the slope
+//      reaches the nearer first, and whether it stops there is not seen), "neither" when none
+//      does;
+//    - no significant drift: the picture within 3 sigma + 0.001 of the slope, "neither" when
+//      both are beyond, "undecided" when both are within;
+//    - in 2D, where both give 0, "both (the same alpha in 2D)"; "no readings" when P_r's last
+//      decade has no usable slope;
+//  - the shell's momentum N_t dR_t/dt, slope x_N + x_R - 1, with its z against each picture: the
+//    snowplow's own kinematics, blind to how the band's particles share their radial speeds.
 struct SnowplowEnd {
   int d = 0;
-  EndSlope epsilon;  // P_r's
-  std::vector<SnowplowKinematic> kinematics;  // R_t, N_t, E_t
+  EndSlope epsilon;                 // P_r's
+  EndSlope radius, count, energy;   // R_t, N_t, E_t
+  double shell = std::numeric_limits<double>::quiet_NaN();  // x_N + x_R - 1
+  double shell_sigma = std::numeric_limits<double>::quiet_NaN();
+  double shell_z_momentum = std::numeric_limits<double>::quiet_NaN();
+  double shell_z_pressure = std::numeric_limits<double>::quiet_NaN();
   std::string heading;
 };
 SnowplowEnd snowplow_at_the_end(int d, const EnsembleFits& fits);

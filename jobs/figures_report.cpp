@@ -248,38 +248,42 @@ std::string end_cell(const EndSlope& e) {
 }
 
 // Where the runs end (analysis/snowplow.h snowplow_at_the_end): P_r's slope epsilon over the
-// last decade and its drift, the other exponents against what epsilon predicts, the heading.
+// last decade and its drift, the shell momentum's slope against each picture, the heading.
 std::string snowplow_end_markdown(const std::vector<CaseResult>& results) {
   std::ostringstream md;
   md << "### Where the runs end\n\n"
         "A run still in its crossover has no plateau, yet says where its slopes are and which "
-        "way they move. A snowplow (a shell of the swept mass whose momentum P_r grows as "
-        "t^epsilon) has alpha = (1 + epsilon)/(d + 1), so every exponent follows from "
-        "epsilon: the momentum-conserving snowplow is epsilon = 0, the pressure-driven one "
-        "(d - 2)/(d + 4), 1/7 in 3D. Below, the mean local slope over the last decade (+- its "
-        "resampling error), P_r's drift per decade, each other slope against what epsilon "
-        "predicts for it (z), and where epsilon is heading: towards the picture on the side "
-        "its drift points to when the drift exceeds 2 sigma, else the picture within 3 sigma "
+        "way they move. A snowplow is a shell of the swept mass N ~ R^d whose momentum grows as "
+        "t^epsilon, so that alpha = (1 + epsilon)/(d + 1): epsilon = 0 for the "
+        "momentum-conserving snowplow, (d - 2)/(d + 4) = 1/7 in 3D for the pressure-driven "
+        "one. Below, mean local slopes over the last decade (+- their resampling error): "
+        "epsilon read as P_r's slope, with its drift per decade and where it is heading (the "
+        "picture on the side its drift points to when the drift exceeds 2 sigma, undecided "
+        "when both are; else the picture within 3 sigma); and read as the slope of the "
+        "shell's momentum N_t dR_t/dt, x_N + x_R - 1, with its z against each picture "
         "(analysis/snowplow.h).\n\n"
-        "| case | last decade | epsilon (P_r) | drift per decade | R_t | from epsilon | z | N_t "
-        "| from epsilon | z | E_t | from epsilon | z | heading |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| case | last decade | R_t | N_t | E_t | epsilon (P_r) | drift per decade | heading | "
+        "x_N + x_R - 1 | z_mc | z_pd |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : results) {
     if (!weighs_the_snowplow(c)) continue;
-    const auto& p = c.plan->spec.physics;
-    const SnowplowEnd v = snowplow_at_the_end(p.dim, c.fits);
+    const SnowplowEnd v = snowplow_at_the_end(c.plan->spec.physics.dim, c.fits);
     md << "| " << c.plan->name << " | ";
     if (v.epsilon.found)
       md << figure_number(v.epsilon.window.t_lo, 3) << " - "
-         << figure_number(v.epsilon.window.t_hi, 3) << " | " << end_cell(v.epsilon) << " | "
-         << figure_number(v.epsilon.drift_per_decade, 3) << " +- "
+         << figure_number(v.epsilon.window.t_hi, 3);
+    else
+      md << "-";
+    md << " | " << end_cell(v.radius) << " | " << end_cell(v.count) << " | "
+       << end_cell(v.energy) << " | " << end_cell(v.epsilon) << " | ";
+    if (v.epsilon.found)
+      md << figure_number(v.epsilon.drift_per_decade, 3) << " +- "
          << figure_number(v.epsilon.drift_error, 2);
     else
-      md << "- | - | - | - | - | - | - | - | - | - | - | -";
-    for (const auto& k : v.kinematics)
-      md << " | " << end_cell(k.end) << " | " << figure_number(k.predicted, 4) << " | "
-         << figure_number(k.z, 3);
-    md << " | " << v.heading << " |\n";
+      md << "-";
+    md << " | " << v.heading << " | " << figure_number(v.shell, 4) << " +- "
+       << figure_number(v.shell_sigma, 2) << " | " << figure_number(v.shell_z_momentum, 3)
+       << " | " << figure_number(v.shell_z_pressure, 3) << " |\n";
   }
   return md.str();
 }

@@ -449,7 +449,7 @@ EnsembleFits snowplow_fits(int d, double (*epsilon)(double decade), double r_shi
   return f;
 }
 
-TEST(Snowplow, HeadsWhereTheRadialMomentumsSlopeDriftsAndChecksTheKinematics) {
+TEST(Snowplow, HeadsWhereTheRadialMomentumsSlopeDriftsAndReadsTheShellsMomentum) {
   // As the 3D r = 0.1 runs end (epsilon 0.044 falling by 0.008 a decade): momentum-conserving.
   const auto falling = [](double dec) { return 0.044 - 0.008 * (dec - 5.6); };
   const SnowplowEnd m = snowplow_at_the_end(3, snowplow_fits(3, falling));
@@ -466,16 +466,22 @@ TEST(Snowplow, HeadsWhereTheRadialMomentumsSlopeDriftsAndChecksTheKinematics) {
             "pressure-driven");
   EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, [](double) { return 0.07; })).heading,
             "neither");
+  // Above both and falling (3D r = 0.5 at 2e4: 0.148 falling by 0.1 a decade): it reaches 1/7
+  // first, and whether it stops there is not seen.
+  const auto above = [](double dec) { return 0.2 - 0.05 * (dec - 5.6); };
+  EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, above)).heading, "undecided");
   // Moving away from both, below 0 and falling: neither.
   const auto away = [](double dec) { return -0.03 - 0.01 * (dec - 5.6); };
   EXPECT_EQ(snowplow_at_the_end(3, snowplow_fits(3, away)).heading, "neither");
   EXPECT_EQ(snowplow_at_the_end(2, snowplow_fits(2, falling)).heading,
             "both (the same alpha in 2D)");
-  // The kinematics: R_t, N_t and E_t as epsilon predicts are consistent with it; R_t moved by
-  // 0.01, far beyond its error, is not.
-  for (const auto& k : m.kinematics) EXPECT_LT(std::fabs(k.z), 3) << quantity_name(k.quantity);
+  // The shell's momentum N_t dR_t/dt of these snowplows grows as P_r does; R_t moved by 0.01
+  // moves it by as much, far beyond its error.
+  EXPECT_LT(std::fabs(m.shell - m.epsilon.slope), 3 * m.shell_sigma);
+  EXPECT_NEAR(m.shell_z_momentum, m.shell / m.shell_sigma, 1e-12);
   const SnowplowEnd moved = snowplow_at_the_end(3, snowplow_fits(3, falling, 0.01));
-  EXPECT_GT(std::fabs(moved.kinematics[0].z), 5);
+  EXPECT_NEAR(moved.shell - m.shell, 0.01, 3 * m.shell_sigma);
+  EXPECT_GT(moved.shell - m.shell, 5 * m.shell_sigma);
   EXPECT_EQ(moved.heading, "momentum-conserving");  // the heading reads P_r alone
   EnsembleFits none;
   EXPECT_EQ(snowplow_at_the_end(3, none).heading, "no readings");
