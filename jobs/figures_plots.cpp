@@ -605,11 +605,10 @@ std::string fig_inner_edge(const std::vector<CaseResult>& all, const Out& out) {
   return out.plot(base + ".gp", gp);
 }
 
-// fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
-// beside the paper's 0.78-0.82 (r < 1) and ~0.47 (r = 1) and the edge-free measures.
 // The snowplow question in 3D (fig11_snowplow_3d): the local slopes of R_t, N_t, E_t and P_r
 // of every 3D r < 1 case against the two pictures' exponents, alpha = 1/4 (momentum-conserving
-// snowplow, dashed) and 2/7 (pressure-driven, dotted); one CSV per case beside the script.
+// snowplow, dashed) and 2/7 (pressure-driven, dotted), and in P_r's panel the slope of the
+// shell's momentum N_t dR_t/dt (analysis/snowplow.h); one CSV per case beside the script.
 std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
   const std::string base = "fig11_snowplow_3d";
   const Quantity panels[] = {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
@@ -636,23 +635,35 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
         "set key top right font ',8' samplen 2\n";
   for (std::size_t q = 0; q < std::size(panels); ++q) {
     const std::string name = quantity_name(panels[q]);
-    gp += "set title '" + name + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
+    const std::string title =
+        panels[q] == Quantity::RadialMomentum
+            ? name + " (solid) and the shell momentum N_t dR_t/dt (dash-dot)"
+            : name;
+    gp += "set title '" + title + "'\nset ylabel 'd ln " + name + " / d ln t'\n";
     std::string plot;
-    for (const CaseResult* c : cases) {
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const CaseResult* c = cases[k];
       const ExponentFit* e = find_exponent(c->fits, panels[q]);
       if (!e) continue;
       const std::string csv = base + "_" + c->plan->name + ".csv";
+      const std::string colour = " lc " + std::to_string(k + 1);  // a case's lines alike
       if (q == 0) {
         Table t;
         std::vector<double> tp;
         for (double x : e->slope.t) tp.push_back(c->plan->spec.physics.paper_time(x));
         t.add_column("t_paper", tp);
         for (Quantity p : panels) t.add_column(quantity_name(p), find_exponent(c->fits, p)->slope.slope);
+        std::vector<double> shell;  // x_N + x_R - 1
+        for (std::size_t i = 0; i < tp.size(); ++i)
+          shell.push_back(t.column("N_t")[i] + t.column("R_t")[i] - 1);
+        t.add_column("shell_momentum", shell);
         write_csv(t, out.dir / csv);
       }
-      plot += std::string(plot.empty() ? "plot " : ", ") + "'" + csv + "' skip 1 using 1:" +
-              std::to_string(q + 2) + " with lines lw 2 title '" + c->plan->name +
-              "' noenhanced";
+      plot += std::string(plot.empty() ? "plot " : ", ") + "'" + csv +
+              "' skip 1 using 1:" + std::to_string(q + 2) + " with lines lw 2" + colour +
+              " title '" + c->plan->name + "' noenhanced";
+      if (panels[q] == Quantity::RadialMomentum)
+        plot += ", '" + csv + "' skip 1 using 1:6 with lines lw 1 dt 4" + colour + " notitle";
     }
     char lines[200];
     std::snprintf(lines, sizeof lines,
@@ -667,6 +678,8 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
   return out.plot(base + ".gp", gp);
 }
 
+// fig9: the active-weighted distribution of cell packing fractions in 2D at the last snapshot,
+// beside the paper's 0.78-0.82 (r < 1) and ~0.47 (r = 1) and the edge-free measures.
 std::string fig_packing(const std::vector<CaseResult>& all, const Out& out) {
   Table t;
   for (const char* n : {"r", "packing", "P"}) t.add_column(n, {});
