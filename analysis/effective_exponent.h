@@ -111,7 +111,8 @@ Plateau find_plateau(const SlopeBand& band, const PlateauOptions& options = {});
 // plateau still says: its mean over the last `decades` of usable samples, and the plateau rule's
 // drift D over that window (the last third's mean minus the first's) over the decades between
 // the thirds' centres, a change per decade (exact for a slope linear in ln t), with their
-// resampling errors (0 for one realisation). Not found when the usable samples at the end span less than `decades`.
+// resampling errors (0 for one realisation). Not found when the usable samples at the end span less
+// than `decades`.
 struct EndSlope {
   bool found = false;
   Window window;

@@ -59,11 +59,12 @@ SnowplowVerdict weigh_snowplow(int d, const EnsembleFits& fits);
 //    - in 2D, where both give 0, "both (the same alpha in 2D)"; "no readings" when P_r's last
 //      decade has no usable slope;
 //  - the shell's momentum N_t dR_t/dt, slope x_N + x_R - 1, with its z against each picture: the
-//    snowplow's own kinematics, blind to how the band's particles share their radial speeds.
+//    snowplow's own kinematics, blind to how the band's particles share their radial speeds
+//    (sigma: the two end slopes' errors as if independent, and the floor, in quadrature).
 struct SnowplowEnd {
   int d = 0;
-  EndSlope epsilon;                 // P_r's
-  EndSlope radius, count, energy;   // R_t, N_t, E_t
+  EndSlope epsilon;                                         // P_r's
+  EndSlope radius, count, energy;                           // R_t, N_t, E_t
   double shell = std::numeric_limits<double>::quiet_NaN();  // x_N + x_R - 1
   double shell_sigma = std::numeric_limits<double>::quiet_NaN();
   double shell_z_momentum = std::numeric_limits<double>::quiet_NaN();

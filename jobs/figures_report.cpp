@@ -274,16 +274,16 @@ std::string snowplow_end_markdown(const std::vector<CaseResult>& results) {
          << figure_number(v.epsilon.window.t_hi, 3);
     else
       md << "-";
-    md << " | " << end_cell(v.radius) << " | " << end_cell(v.count) << " | "
-       << end_cell(v.energy) << " | " << end_cell(v.epsilon) << " | ";
+    md << " | " << end_cell(v.radius) << " | " << end_cell(v.count) << " | " << end_cell(v.energy)
+       << " | " << end_cell(v.epsilon) << " | ";
     if (v.epsilon.found)
       md << figure_number(v.epsilon.drift_per_decade, 3) << " +- "
          << figure_number(v.epsilon.drift_error, 2);
     else
       md << "-";
     md << " | " << v.heading << " | " << figure_number(v.shell, 4) << " +- "
-       << figure_number(v.shell_sigma, 2) << " | " << figure_number(v.shell_z_momentum, 3)
-       << " | " << figure_number(v.shell_z_pressure, 3) << " |\n";
+       << figure_number(v.shell_sigma, 2) << " | " << figure_number(v.shell_z_momentum, 3) << " | "
+       << figure_number(v.shell_z_pressure, 3) << " |\n";
   }
   return md.str();
 }

@@ -432,8 +432,8 @@ EnsembleFits snowplow_fits(int d, double (*epsilon)(double decade), double r_shi
   const std::vector<double> t = log_grid(10, 1.2e6, 20);
   EnsembleFits f;
   std::uint64_t key = 0;
-  for (Quantity q : {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy,
-                     Quantity::RadialMomentum}) {
+  for (Quantity q :
+       {Quantity::RadiusRms, Quantity::ActiveCount, Quantity::Energy, Quantity::RadialMomentum}) {
     const auto slope = [&](double u) {
       const double eps = epsilon(u / std::numbers::ln10);
       const double alpha = alpha_from_exponent(Quantity::RadialMomentum, d, eps);
