@@ -77,8 +77,8 @@ double collision_growth(const Table& ts) {
   return std::log(c.back() / c[k]) / std::log(t_end / t[k]);
 }
 
-// Where case `c` keeps its finished realisations until the report is written, and the file
-// there that says which ensemble they belong to (its spec, as this build plans it).
+// Where case `c` keeps its finished realisations, and the file there that says which ensemble
+// they belong to (its spec, as this build plans it).
 fs::path realisations_dir(const fs::path& dir, const FigureCase& c) {
   return dir / "ensembles" / c.name / "realisations";
 }
@@ -383,10 +383,9 @@ FiguresResult run_figures_job(const FiguresOptions& o) {
     return out;
   }
   if (!o.resume && !o.settings.empty()) write_file_atomic(dir / "figures.toml", o.settings);
-  out = run_pass(o, plan, dir, nullptr);
-  if (!out.interrupted)  // finished: the ensembles' folders hold what the realisations gave
-    for (const auto& c : plan.cases) fs::remove_all(realisations_dir(dir, c));
-  return out;
+  // The realisations stay (a few MB): hours of --snowplow or --limit runs can be fitted again by
+  // a newer build, report.md removed and `grainshock resume DIR` reading them back.
+  return run_pass(o, plan, dir, nullptr);
 }
 
 bool is_unfinished_figures_folder(const fs::path& dir) {
