@@ -646,7 +646,12 @@ std::string fig_snowplow(const std::vector<CaseResult>& all, const Out& out) {
       const ExponentFit* e = find_exponent(c->fits, panels[q]);
       if (!e) continue;
       const std::string csv = base + "_" + c->plan->name + ".csv";
-      const std::string colour = " lc " + std::to_string(k + 1);  // a case's lines alike
+      // A case's lines alike, and apart from every other case's: gnuplot's own cycle of 8
+      // gave 3D r = 0.1 and the ninth case, r = 0.5 of --snowplow, one colour.
+      static constexpr const char* kColours[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                                 "#f0e442", "#0072b2", "#e51e10", "#000000",
+                                                 "#a0522d", "#ff69b4", "#808080", "#6b8e23"};
+      const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
       if (q == 0) {
         Table t;
         std::vector<double> tp;
