@@ -104,21 +104,20 @@ SnowplowEnd snowplow_at_the_end(int d, const EnsembleFits& fits) {
     v.heading = "both (the same alpha in 2D)";
     return v;
   }
+  // The picture(s) the reading points to: towards (a significant drift) or near (none).
+  const auto pick = [](bool mc_side, bool pd_side) {
+    return mc_side && pd_side ? "undecided"
+           : mc_side          ? "momentum-conserving"
+           : pd_side          ? "pressure-driven"
+                              : "neither";
+  };
   const double eps = v.epsilon.slope, drift = v.epsilon.drift_per_decade;
   if (std::fabs(drift) > 2 * v.epsilon.drift_error + kFloor) {
-    const bool to_mc = (mc - eps) * drift > 0, to_pd = (pd - eps) * drift > 0;
-    v.heading = to_mc && to_pd ? "undecided"
-                : to_mc        ? "momentum-conserving"
-                : to_pd        ? "pressure-driven"
-                               : "neither";
+    v.heading = pick((mc - eps) * drift > 0, (pd - eps) * drift > 0);
     return v;
   }
   const double reach = 3 * v.epsilon.slope_error + kFloor;
-  const bool near_mc = std::fabs(eps - mc) <= reach, near_pd = std::fabs(eps - pd) <= reach;
-  v.heading = near_mc && near_pd ? "undecided"
-              : near_mc          ? "momentum-conserving"
-              : near_pd          ? "pressure-driven"
-                                 : "neither";
+  v.heading = pick(std::fabs(eps - mc) <= reach, std::fabs(eps - pd) <= reach);
   return v;
 }
 
